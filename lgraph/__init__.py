@@ -1,0 +1,56 @@
+"""lgraph: print-quality line graphics of mathematical surfaces.
+
+Surfaces are drawn as families of curves on them (parameter lines, lines of
+curvature, the contour) with hidden parts removed exactly.
+
+>>> import lgraph as lg
+>>> scene = lg.Scene()
+>>> _ = scene.add(lg.Ellipsoid(3, 2, 1.5), lg.ParameterLines(6, 12))
+>>> drawing = scene.render(lg.ParallelProjector(direction=(1, -1, 0.7)))
+>>> all(s.visible for s in drawing.strokes)
+True
+"""
+
+from __future__ import annotations
+
+from .curvature import principal_curvatures, principal_directions
+from .curves import Curve, CurveBatch, CurveOnSurface
+from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
+from .families import Contour, Family, LinesOfCurvature, ParameterLines
+from .geometry.transforms import Transform, rotate, scale, translate
+from .projectors import CentralProjector, ParallelProjector, Projector
+from .scene import Node, Scene
+from .surfaces import Domain, Ellipsoid, Quadric, Sphere, Surface
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "CentralProjector",
+    "Contour",
+    "Curve",
+    "CurveBatch",
+    "CurveOnSurface",
+    "Domain",
+    "Drawing",
+    "Ellipsoid",
+    "Family",
+    "HIDDEN_STYLE",
+    "LinesOfCurvature",
+    "Node",
+    "Page",
+    "ParallelProjector",
+    "ParameterLines",
+    "Projector",
+    "Quadric",
+    "Scene",
+    "Sphere",
+    "Stroke",
+    "Style",
+    "Surface",
+    "Transform",
+    "principal_curvatures",
+    "principal_directions",
+    "rotate",
+    "scale",
+    "translate",
+]

@@ -1,0 +1,68 @@
+"""Output backends, chosen by file suffix and imported only when first used.
+
+A backend is a callable ``write(drawing, path, **options)`` that writes the
+whole file at ``path`` (``Drawing.save`` makes the write atomic).
+
+>>> get_backend(".svg").__name__
+'write_svg'
+>>> get_backend(".doc")
+Traceback (most recent call last):
+...
+ValueError: Drawing.save: unknown file suffix '.doc'; known: .pdf, .png, .svg
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from typing import Any
+
+__all__ = ["get_backend", "register_backend", "backend_suffixes"]
+
+Writer = Callable[..., None]
+
+#: suffix -> "module:function" (imported lazily) or a callable
+_BACKENDS: dict[str, str | Writer] = {
+    ".pdf": "lgraph.backends.pdf:write_pdf",
+    ".png": "lgraph.backends.png:write_png",
+    ".svg": "lgraph.backends.svg:write_svg",
+}
+
+
+def register_backend(suffix: str, writer: str | Writer, *, replace: bool = False) -> None:
+    """Register ``writer`` for files ending in ``suffix`` (e.g. ``".hpgl"``)."""
+    suffix = suffix.lower() if suffix.startswith(".") else "." + suffix.lower()
+    if suffix in _BACKENDS and not replace:
+        raise ValueError(f"register_backend: a backend for {suffix!r} is already registered")
+    _BACKENDS[suffix] = writer
+
+
+def backend_suffixes() -> list[str]:
+    """All suffixes with a backend, built-in and registered."""
+    _load_plugins()
+    return sorted(_BACKENDS)
+
+
+def _load_plugins() -> None:
+    try:
+        from ..plugins import load_backends
+    except ImportError:  # pragma: no cover - plugins module always present
+        return
+    load_backends()
+
+
+def get_backend(suffix: str) -> Writer:
+    """The writer for ``suffix``; raises ValueError for an unknown one."""
+    key = suffix.lower()
+    if key not in _BACKENDS:
+        _load_plugins()
+    if key not in _BACKENDS:
+        known = ", ".join(sorted(_BACKENDS))
+        shown = suffix if suffix else "(none)"
+        raise ValueError(f"Drawing.save: unknown file suffix {shown!r}; known: {known}")
+    entry: Any = _BACKENDS[key]
+    if isinstance(entry, str):
+        module, _, name = entry.partition(":")
+        entry = getattr(importlib.import_module(module), name)
+        _BACKENDS[key] = entry
+    return entry

@@ -1,0 +1,198 @@
+"""Space curves, curves on surfaces, and the batches the renderer samples.
+
+>>> import numpy as np
+>>> helix = Curve(lambda t: np.stack([np.cos(t), np.sin(t), t / 5], axis=-1), 0, 6.0)
+>>> helix(np.array([0.0])).round(12).tolist()
+[[1.0, 0.0, 0.0]]
+>>> helix.derivative(np.array([0.0])).round(6).tolist()
+[[0.0, 1.0, 0.2]]
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import attrs
+import numpy as np
+
+from ._own import ON
+from ._validate import as_number
+
+__all__ = ["Curve", "CurveOnSurface", "CurveBatch"]
+
+
+def _finite_number(owner: str, name: str) -> Callable[[Any, Any, Any], None]:
+    def check(_i: Any, _a: Any, v: Any) -> None:
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise ValueError(f"{owner}: {name} must be a finite number, got {v!r}")
+
+    return check
+
+
+def _check_func(owner: str) -> Callable[[Any, Any, Any], None]:
+    def check(_i: Any, a: Any, v: Any) -> None:
+        if not callable(v):
+            raise TypeError(f"{owner}: {a.name} must be callable, got {type(v).__name__}")
+
+    return check
+
+
+@attrs.frozen(eq=False)
+class Curve:
+    """A space curve ``t -> func(t)`` for ``t0 <= t <= t1``.
+
+    ``func`` takes an array of ``t`` and returns an array of shape ``t.shape + (3,)``.
+    ``derivative`` (optional, same calling convention) gives ``dx/dt``; otherwise
+    accurate central differences are used.
+    """
+
+    func: Callable[[np.ndarray], np.ndarray] = attrs.field(validator=_check_func("Curve"))
+    t0: float = attrs.field(converter=as_number, validator=_finite_number("Curve", "t0"))
+    t1: float = attrs.field(converter=as_number, validator=_finite_number("Curve", "t1"))
+    derivative_func: Callable[[np.ndarray], np.ndarray] | None = attrs.field(
+        default=None, kw_only=True
+    )
+    second_derivative_func: Callable[[np.ndarray], np.ndarray] | None = attrs.field(
+        default=None, kw_only=True
+    )
+    closed: bool = attrs.field(default=False, kw_only=True)
+
+    def __attrs_post_init__(self) -> None:
+        if not self.t0 < self.t1:
+            raise ValueError(f"Curve: t0 must be less than t1, got t0={self.t0}, t1={self.t1}")
+        probe = np.asarray(self.func(np.array([self.t0, (self.t0 + self.t1) / 2])), float)
+        if probe.shape != (2, 3):
+            raise ValueError(
+                "Curve: func must map an array of shape (n,) to shape (n, 3), "
+                f"got shape {probe.shape} for n=2"
+            )
+
+    def __call__(self, t: Any) -> np.ndarray:
+        return np.asarray(self.func(np.asarray(t, dtype=float)), dtype=float)
+
+    @property
+    def _h(self) -> float:
+        return 1e-3 * (self.t1 - self.t0)
+
+    def derivative(self, t: Any) -> np.ndarray:
+        """``dx/dt`` (analytic if given, else fourth-order central differences)."""
+        t = np.asarray(t, dtype=float)
+        if self.derivative_func is not None:
+            return np.asarray(self.derivative_func(t), dtype=float)
+        h, f = self._h, self.__call__
+        return (-f(t + 2 * h) + 8 * f(t + h) - 8 * f(t - h) + f(t - 2 * h)) / (12 * h)
+
+    def second_derivative(self, t: Any) -> np.ndarray:
+        """``d^2x/dt^2`` (analytic if given, else central differences)."""
+        t = np.asarray(t, dtype=float)
+        if self.second_derivative_func is not None:
+            return np.asarray(self.second_derivative_func(t), dtype=float)
+        if self.derivative_func is not None:
+            h, f = self._h, self.derivative
+            return (-f(t + 2 * h) + 8 * f(t + h) - 8 * f(t - h) + f(t - 2 * h)) / (12 * h)
+        h, f = 10 * self._h, self.__call__
+        return (-f(t + 2 * h) + 16 * f(t + h) - 30 * f(t) + 16 * f(t - h) - f(t - 2 * h)) / (
+            12 * h * h
+        )
+
+    def batch(self, family: str = "curve") -> CurveBatch:
+        """This curve as a one-curve batch for the renderer."""
+        return CurveBatch(
+            family=family,
+            t0=np.array([self.t0]),
+            t1=np.array([self.t1]),
+            evaluate=lambda _idx, t: (self(t), None),
+            closed=np.array([self.closed]),
+        )
+
+
+@attrs.frozen(eq=False)
+class CurveOnSurface:
+    """A curve ``t -> surface.point(*uv(t))`` given in the parameter plane.
+
+    ``uv`` maps an array of ``t`` to an array of shape ``t.shape + (2,)``.
+    """
+
+    surface: Any
+    uv: Callable[[np.ndarray], np.ndarray] = attrs.field(validator=_check_func("CurveOnSurface"))
+    t0: float = attrs.field(converter=as_number, validator=_finite_number("CurveOnSurface", "t0"))
+    t1: float = attrs.field(converter=as_number, validator=_finite_number("CurveOnSurface", "t1"))
+    closed: bool = attrs.field(default=False, kw_only=True)
+
+    def __attrs_post_init__(self) -> None:
+        if not self.t0 < self.t1:
+            raise ValueError(
+                f"CurveOnSurface: t0 must be less than t1, got t0={self.t0}, t1={self.t1}"
+            )
+
+    def __call__(self, t: Any) -> np.ndarray:
+        return self.surface.points(self.uv(np.asarray(t, dtype=float)))
+
+    def batch(self, family: str = "curve") -> CurveBatch:
+        def evaluate(_idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            uv = np.asarray(self.uv(t), dtype=float)
+            return self.surface.points(uv), uv
+
+        return CurveBatch(
+            family=family,
+            t0=np.array([self.t0]),
+            t1=np.array([self.t1]),
+            evaluate=evaluate,
+            closed=np.array([self.closed]),
+            surface=self.surface,
+        )
+
+
+@attrs.frozen(eq=False)
+class CurveBatch:
+    """Many curves of one family, evaluated together (the renderer's unit of work).
+
+    ``evaluate(idx, t)`` takes equal-length arrays of curve indices and
+    parameters and returns ``(xyz, uv)``: local coordinates ``(n, 3)`` and
+    surface parameters ``(n, 2)`` (or None for free curves).  Curve ``k`` runs
+    over ``t0[k] <= t <= t1[k]``; ``closed[k]`` marks closed curves.  ``own`` is
+    how points relate to ``surface`` for visibility (``ON`` or ``CONTOUR``).
+    """
+
+    family: str
+    t0: np.ndarray
+    t1: np.ndarray
+    evaluate: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray | None]]
+    closed: np.ndarray = attrs.field(default=None)
+    surface: Any = None
+    own: int = ON
+    style: Any = None
+
+    def __attrs_post_init__(self) -> None:
+        object.__setattr__(self, "t0", np.asarray(self.t0, dtype=float).ravel())
+        object.__setattr__(self, "t1", np.asarray(self.t1, dtype=float).ravel())
+        if self.closed is None:
+            object.__setattr__(self, "closed", np.zeros(len(self.t0), bool))
+        else:
+            object.__setattr__(
+                self, "closed", np.broadcast_to(np.asarray(self.closed, bool), self.t0.shape)
+            )
+
+    def __len__(self) -> int:
+        return len(self.t0)
+
+    @classmethod
+    def from_uv(
+        cls,
+        surface: Any,
+        family: str,
+        t0: Any,
+        t1: Any,
+        uv: Callable[[np.ndarray, np.ndarray], np.ndarray],
+        closed: Any = False,
+        **kw: Any,
+    ) -> CurveBatch:
+        """A batch of curves given in the parameter plane: ``uv(idx, t) -> (n, 2)``."""
+
+        def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            p = np.asarray(uv(idx, t), dtype=float)
+            return surface.point(p[:, 0], p[:, 1]), p
+
+        return cls(family, t0, t1, evaluate, closed=closed, surface=surface, **kw)

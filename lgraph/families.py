@@ -1,0 +1,137 @@
+"""Line families: what to draw on a surface.
+
+A family turns a surface (and the view, for view-dependent families such as
+the contour) into :class:`~lgraph.curves.CurveBatch` objects.
+
+>>> import lgraph as lg
+>>> [len(b) for b in lg.ParameterLines(4, 6).batches(lg.Sphere(1), None)]
+[4, 6]
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import attrs
+import numpy as np
+
+from ._own import CONTOUR
+from ._validate import count
+from .curves import CurveBatch
+
+if TYPE_CHECKING:
+    from .projectors import Projector
+    from .surfaces._base import Surface
+
+__all__ = ["Family", "ParameterLines", "Contour", "LinesOfCurvature", "register_family", "FAMILIES"]
+
+
+class Family:
+    """Base class of line families."""
+
+    def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        raise NotImplementedError  # pragma: no cover
+
+
+def parameter_line_batches(
+    surface: Surface,
+    values1: np.ndarray,
+    values2: np.ndarray,
+    family1: str = "u1",
+    family2: str = "u2",
+) -> list[CurveBatch]:
+    """Batches for the lines ``u1 = values1[k]`` and ``u2 = values2[k]``."""
+    d = surface.domain
+    out = []
+    if len(values1):
+        c1 = np.asarray(values1, float)
+        out.append(
+            CurveBatch.from_uv(
+                surface,
+                family1,
+                np.full(len(c1), d.u2[0]),
+                np.full(len(c1), d.u2[1]),
+                lambda idx, t, c1=c1: np.column_stack([c1[idx], t]),
+                closed=d.periodic[1],
+            )
+        )
+    if len(values2):
+        c2 = np.asarray(values2, float)
+        out.append(
+            CurveBatch.from_uv(
+                surface,
+                family2,
+                np.full(len(c2), d.u1[0]),
+                np.full(len(c2), d.u1[1]),
+                lambda idx, t, c2=c2: np.column_stack([t, c2[idx]]),
+                closed=d.periodic[0],
+            )
+        )
+    return out
+
+
+@attrs.frozen
+class ParameterLines(Family):
+    """``n1`` lines ``u1 = const`` (family ``"u1"``) and ``n2`` lines ``u2 = const``
+    (family ``"u2"``), evenly spread over the surface's drawn domain.
+
+    >>> ParameterLines(-1, 2)
+    Traceback (most recent call last):
+    ...
+    ValueError: ParameterLines: n1 must be an integer from 0 to 100000, got -1
+    """
+
+    n1: int = attrs.field(default=10, validator=count("ParameterLines"))
+    n2: int = attrs.field(default=10, validator=count("ParameterLines"))
+
+    def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        d = surface.domain
+        return parameter_line_batches(surface, d.lines(0, self.n1), d.lines(1, self.n2))
+
+
+@attrs.frozen
+class Contour(Family):
+    """The surface's contour for the current view (drawn by default)."""
+
+    def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        if projector is None:
+            return []
+        out = []
+        for b in surface.contour(projector):
+            out.append(attrs.evolve(b, family="contour", own=CONTOUR))
+        return out
+
+
+@attrs.frozen
+class LinesOfCurvature(Family):
+    """``n1`` and ``n2`` lines of curvature of the two principal families.
+
+    Each surface class supplies its closed forms through
+    ``surface.lines_of_curvature(n1, n2)``.
+    """
+
+    n1: int = attrs.field(default=10, validator=count("LinesOfCurvature"))
+    n2: int = attrs.field(default=10, validator=count("LinesOfCurvature"))
+
+    def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        method = getattr(surface, "lines_of_curvature", None)
+        if method is None:
+            raise NotImplementedError(
+                f"LinesOfCurvature: {type(surface).__name__} has no lines_of_curvature(n1, n2)"
+            )
+        return [attrs.evolve(b, family="curvature") for b in method(self.n1, self.n2)]
+
+
+#: Registry of family classes by name (plugins add to it).
+FAMILIES: dict[str, Any] = {
+    "parameter_lines": ParameterLines,
+    "contour": Contour,
+    "lines_of_curvature": LinesOfCurvature,
+}
+
+
+def register_family(name: str, cls: Any, *, replace: bool = False) -> None:
+    """Register a family class under ``name``."""
+    if name in FAMILIES and not replace:
+        raise ValueError(f"register_family: a family named {name!r} is already registered")
+    FAMILIES[name] = cls

@@ -1,0 +1,195 @@
+"""Projectors own the eye: they map world points to the projection plane and
+give, for any point, the ray toward the viewer.
+
+>>> import numpy as np
+>>> p = ParallelProjector(direction=(0, 0, 1))
+>>> p.project(np.array([[1.0, 2.0, 3.0]]))
+array([[1., 2.]])
+>>> c = CentralProjector(eye=(0, 0, 10), target=(0, 0, 0))
+>>> c.project(np.array([[1.0, 2.0, 0.0]]))
+array([[1., 2.]])
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+import numpy as np
+
+from ._validate import vector3
+
+__all__ = ["Projector", "ParallelProjector", "CentralProjector"]
+
+
+def _frame(toward_viewer: np.ndarray, up: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Orthonormal (right, up, toward viewer) frame; ``up`` need not be orthogonal."""
+    e3 = toward_viewer / np.linalg.norm(toward_viewer)
+    u = up / np.linalg.norm(up)
+    if abs(float(u @ e3)) > 1 - 1e-9:  # looking along the up vector: pick another
+        u = np.array([0.0, 1.0, 0.0]) if abs(e3[1]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    e1 = np.cross(u, e3)
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(e3, e1)
+    return e1, e2, e3
+
+
+def _direction_from_angles(azimuth: float, elevation: float) -> np.ndarray:
+    for name, v in (("azimuth", azimuth), ("elevation", elevation)):
+        if not (isinstance(v, (int, float)) and math.isfinite(v)):
+            raise ValueError(f"Projector: {name} must be a finite number of degrees, got {v!r}")
+    if not -90 <= elevation <= 90:
+        raise ValueError(f"Projector: elevation must lie in [-90, 90] degrees, got {elevation!r}")
+    az, el = math.radians(azimuth), math.radians(elevation)
+    return np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
+
+
+class Projector:
+    """Base class: subclasses define the eye.
+
+    Methods are vectorized over points of shape ``(..., 3)``.
+    """
+
+    #: (right, up, toward-viewer) unit vectors of the image plane
+    frame: tuple[np.ndarray, np.ndarray, np.ndarray]
+
+    def project(self, points: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
+        """Projection-plane coordinates ``(..., 2)``."""
+        raise NotImplementedError
+
+    def rays(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover
+        """Unit directions toward the viewer ``(..., 3)`` and the ray lengths ``(...)``
+        up to the eye (``inf`` for parallel projection)."""
+        raise NotImplementedError
+
+    def view_vectors(self, points: np.ndarray) -> np.ndarray:  # pragma: no cover
+        """Vectors ``w`` toward the viewer; contour points satisfy ``N . w = 0``."""
+        raise NotImplementedError
+
+    def describe(self) -> str:  # pragma: no cover
+        raise NotImplementedError
+
+
+@attrs.frozen(eq=False)
+class ParallelProjector(Projector):
+    """Parallel (orthographic) projection along ``direction``.
+
+    Parameters
+    ----------
+    direction : 3 numbers
+        Vector from the scene toward the viewer (need not be unit).
+    up : 3 numbers
+        World vector that appears upward in the picture (default ``z``).
+    """
+
+    direction: np.ndarray = attrs.field(
+        converter=lambda v: vector3("ParallelProjector", "direction", v, nonzero=True)
+    )
+    up: np.ndarray = attrs.field(
+        default=(0.0, 0.0, 1.0),
+        converter=lambda v: vector3("ParallelProjector", "up", v, nonzero=True),
+    )
+    frame: tuple[np.ndarray, np.ndarray, np.ndarray] = attrs.field(init=False)
+
+    @frame.default
+    def _frame_default(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return _frame(self.direction, self.up)
+
+    @classmethod
+    def from_angles(cls, azimuth: float, elevation: float) -> ParallelProjector:
+        """Viewer at ``azimuth`` (degrees from +x toward +y) and ``elevation``
+        (degrees above the xy-plane), as in the paper's software."""
+        return cls(direction=_direction_from_angles(azimuth, elevation))
+
+    def project(self, points: np.ndarray) -> np.ndarray:
+        p = np.asarray(points, dtype=float)
+        e1, e2, _ = self.frame
+        return np.stack([p @ e1, p @ e2], axis=-1)
+
+    def rays(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        p = np.asarray(points, dtype=float)
+        d = np.broadcast_to(self.frame[2], p.shape)
+        return d, np.full(p.shape[:-1], np.inf)
+
+    def view_vectors(self, points: np.ndarray) -> np.ndarray:
+        return np.broadcast_to(self.frame[2], np.shape(points))
+
+    def describe(self) -> str:
+        d = np.round(self.frame[2], 4).tolist()
+        return f"parallel projection, view direction {d}"
+
+
+@attrs.frozen(eq=False)
+class CentralProjector(Projector):
+    """Central (perspective) projection from ``eye`` looking at ``target``.
+
+    The image plane passes through ``target``, so objects near the target keep
+    their size.
+    """
+
+    eye: np.ndarray = attrs.field(converter=lambda v: vector3("CentralProjector", "eye", v))
+    target: np.ndarray = attrs.field(
+        default=(0.0, 0.0, 0.0), converter=lambda v: vector3("CentralProjector", "target", v)
+    )
+    up: np.ndarray = attrs.field(
+        default=(0.0, 0.0, 1.0),
+        converter=lambda v: vector3("CentralProjector", "up", v, nonzero=True),
+    )
+    frame: tuple[np.ndarray, np.ndarray, np.ndarray] = attrs.field(init=False)
+    distance: float = attrs.field(init=False)
+
+    @frame.default
+    def _frame_default(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        dist = float(np.linalg.norm(self.eye - self.target))
+        if not dist > 0:
+            raise ValueError(
+                f"CentralProjector: eye must differ from target, both are {self.eye.tolist()}"
+            )
+        return _frame(self.eye - self.target, self.up)
+
+    @distance.default
+    def _distance_default(self) -> float:
+        return float(np.linalg.norm(self.eye - self.target))
+
+    @classmethod
+    def from_angles(
+        cls,
+        azimuth: float,
+        elevation: float,
+        distance: float,
+        target: Any = (0.0, 0.0, 0.0),
+    ) -> CentralProjector:
+        """Eye at ``distance`` from ``target`` in the direction given by
+        ``azimuth`` and ``elevation`` (degrees)."""
+        if not (isinstance(distance, (int, float)) and math.isfinite(distance) and distance > 0):
+            raise ValueError(
+                f"CentralProjector: distance must be a positive finite number, got {distance!r}"
+            )
+        t = vector3("CentralProjector", "target", target)
+        return cls(eye=t + distance * _direction_from_angles(azimuth, elevation), target=t)
+
+    def depth(self, points: np.ndarray) -> np.ndarray:
+        """Distance in front of the eye along the viewing axis (> 0 when visible)."""
+        return (self.eye - np.asarray(points, dtype=float)) @ self.frame[2]
+
+    def project(self, points: np.ndarray) -> np.ndarray:
+        p = np.asarray(points, dtype=float) - self.eye
+        e1, e2, e3 = self.frame
+        depth = -(p @ e3)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            f = self.distance / depth
+        return np.stack([(p @ e1) * f, (p @ e2) * f], axis=-1)
+
+    def rays(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        w = self.eye - np.asarray(points, dtype=float)
+        n = np.linalg.norm(w, axis=-1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            d = w / n[..., None]
+        return d, n
+
+    def view_vectors(self, points: np.ndarray) -> np.ndarray:
+        return self.eye - np.asarray(points, dtype=float)
+
+    def describe(self) -> str:
+        return f"central projection, eye {self.eye.tolist()}, target {self.target.tolist()}"

@@ -1,0 +1,228 @@
+"""The Surface base class: what a surface is, what it draws, what it hides.
+
+A subclass must supply :meth:`Surface.point` and a :attr:`Surface.domain`.
+Derivatives, normals and fundamental forms have numeric defaults here; classes
+override them with analytic formulas.  :meth:`Surface.contour` and
+:meth:`Surface.hits` are the two questions the renderer asks; a surface with
+analytic answers overrides them.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import attrs
+import numpy as np
+
+from .._own import CONTOUR, OFF, ON
+from .._tolerance import FD_STEP_1, FD_STEP_2
+from .._validate import interval
+
+if TYPE_CHECKING:
+    from ..curves import CurveBatch
+    from ..projectors import Projector
+
+__all__ = ["Domain", "Surface", "OFF", "ON", "CONTOUR"]
+
+
+def _bool_pair(value: Any) -> tuple[bool, bool]:
+    if isinstance(value, bool):
+        return (value, value)
+    a, b = value
+    return (bool(a), bool(b))
+
+
+@attrs.frozen
+class Domain:
+    """The drawn parameter rectangle ``u1_range x u2_range``.
+
+    ``periodic[i]`` says that ``u_i`` wraps around (its two ends are the same
+    curve); ``poles[i]`` says that the ends of ``u_i`` collapse to single points
+    (so no parameter line is drawn there).
+
+    >>> d = Domain((0, 1), (0, 6.283185307179586), periodic=(False, True))
+    >>> d.lines(0, 3).tolist()
+    [0.0, 0.5, 1.0]
+    >>> len(d.lines(1, 4))
+    4
+    """
+
+    u1: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u1", v))
+    u2: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u2", v))
+    periodic: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
+    poles: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
+
+    def range(self, i: int) -> tuple[float, float]:
+        return self.u1 if i == 0 else self.u2
+
+    def span(self, i: int) -> float:
+        lo, hi = self.range(i)
+        return hi - lo
+
+    def lines(self, i: int, n: int) -> np.ndarray:
+        """``n`` evenly spread values of ``u_i`` for drawing ``u_i = const`` lines.
+
+        Periodic parameters get ``n`` values without repeating the seam; pole
+        ends are left out; otherwise both ends (the patch boundary) are drawn.
+        """
+        lo, hi = self.range(i)
+        if n <= 0:
+            return np.empty(0)
+        if self.periodic[i]:
+            return lo + (hi - lo) * np.arange(n) / n
+        if self.poles[i]:
+            return lo + (hi - lo) * np.arange(1, n + 1) / (n + 1)
+        if n == 1:
+            return np.array([(lo + hi) / 2])
+        return np.linspace(lo, hi, n)
+
+
+class Surface:
+    """Base class of all surfaces.
+
+    Subclasses are frozen attrs classes that define :attr:`domain` and
+    :meth:`point`; everything else has a default.  Vectorized methods take
+    broadcastable arrays ``u1, u2`` and return arrays of shape ``(..., 3)``.
+    """
+
+    #: Families drawn when a node is added with none (besides the contour).
+    default_families: tuple[str, ...] = ("parameter_lines",)
+
+    # -- what it is ---------------------------------------------------------
+    @property
+    def domain(self) -> Domain:  # pragma: no cover - abstract
+        raise NotImplementedError(f"{type(self).__name__} must define a domain")
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:  # pragma: no cover - abstract
+        """Point ``x(u1, u2)``, shape ``broadcast(u1, u2).shape + (3,)``."""
+        raise NotImplementedError(f"{type(self).__name__} must define point(u1, u2)")
+
+    def points(self, uv: np.ndarray) -> np.ndarray:
+        """``point`` of an ``(..., 2)`` array of parameters."""
+        uv = np.asarray(uv, dtype=float)
+        return self.point(uv[..., 0], uv[..., 1])
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Axis-aligned box ``(lo, hi)`` containing the drawn patch (local coords).
+
+        The default samples the domain and pads by a few percent.
+        """
+        d = self.domain
+        u1, u2 = np.meshgrid(np.linspace(*d.u1, 65), np.linspace(*d.u2, 65), indexing="ij")
+        p = self.point(u1, u2).reshape(-1, 3)
+        lo, hi = p.min(axis=0), p.max(axis=0)
+        pad = 0.05 * (hi - lo).max() + 1e-12
+        return lo - pad, hi + pad
+
+    @property
+    def size(self) -> float:
+        """Characteristic length (diagonal of :meth:`bounds`)."""
+        lo, hi = self.bounds()
+        return float(np.linalg.norm(hi - lo))
+
+    # -- derivatives and fundamental forms ----------------------------------
+    def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        """First partial derivatives ``x1 = dx/du1`` and ``x2 = dx/du2``.
+
+        Default: fourth-order central differences.
+        """
+        u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+        h1 = FD_STEP_1 * self.domain.span(0)
+        h2 = FD_STEP_1 * self.domain.span(1)
+        f = self.point
+        x1 = -f(u1 + 2 * h1, u2) + 8 * f(u1 + h1, u2) - 8 * f(u1 - h1, u2) + f(u1 - 2 * h1, u2)
+        x2 = -f(u1, u2 + 2 * h2) + 8 * f(u1, u2 + h2) - 8 * f(u1, u2 - h2) + f(u1, u2 - 2 * h2)
+        return x1 / (12 * h1), x2 / (12 * h2)
+
+    def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Second partial derivatives ``x11, x12, x22``.
+
+        Default: fourth-order central differences.
+        """
+        u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+        h1 = FD_STEP_2 * self.domain.span(0)
+        h2 = FD_STEP_2 * self.domain.span(1)
+        f = self.point
+        x0 = f(u1, u2)
+
+        def second(g: Any, h: float) -> np.ndarray:
+            return (-g(2 * h) + 16 * g(h) - 30 * x0 + 16 * g(-h) - g(-2 * h)) / (12 * h * h)
+
+        x11 = second(lambda s: f(u1 + s, u2), h1)
+        x22 = second(lambda s: f(u1, u2 + s), h2)
+        d = self.derivatives
+        x12 = (
+            -d(u1, u2 + 2 * h2)[0]
+            + 8 * d(u1, u2 + h2)[0]
+            - 8 * d(u1, u2 - h2)[0]
+            + d(u1, u2 - 2 * h2)[0]
+        ) / (12 * h2)
+        return x11, x12, x22
+
+    def normal(self, u1: Any, u2: Any) -> np.ndarray:
+        """Unit normal ``N = x1 x x2 / |x1 x x2|``."""
+        x1, x2 = self.derivatives(u1, u2)
+        n = np.cross(x1, x2)
+        norm = np.linalg.norm(n, axis=-1, keepdims=True)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return n / norm
+
+    def first_fundamental_form(self, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
+        """``g11, g12, g22`` (``g_ik = x_i . x_k``)."""
+        x1, x2 = self.derivatives(u1, u2)
+        return (
+            np.einsum("...i,...i", x1, x1),
+            np.einsum("...i,...i", x1, x2),
+            np.einsum("...i,...i", x2, x2),
+        )
+
+    def second_fundamental_form(self, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
+        """``L11, L12, L22`` (``L_ik = N . x_ik``)."""
+        n = self.normal(u1, u2)
+        x11, x12, x22 = self.second_derivatives(u1, u2)
+        return (
+            np.einsum("...i,...i", n, x11),
+            np.einsum("...i,...i", n, x12),
+            np.einsum("...i,...i", n, x22),
+        )
+
+    def principal_curvatures(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Principal curvatures ``k1 <= k2`` (sign follows the normal :meth:`normal`)."""
+        from ..curvature import principal_curvatures
+
+        return principal_curvatures(self, u1, u2)
+
+    def principal_directions(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Unit 3-D principal directions ``(e1, e2)`` belonging to ``k1 <= k2``."""
+        from ..curvature import principal_directions
+
+        return principal_directions(self, u1, u2)
+
+    # -- what it draws -------------------------------------------------------
+    def contour(self, projector: Projector) -> list[CurveBatch]:
+        """Contour curves for ``projector`` (given in this surface's local frame)."""
+        raise NotImplementedError(
+            f"{type(self).__name__} has no contour yet: override contour(projector)"
+        )
+
+    # -- what it hides -------------------------------------------------------
+    def hits(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """Which rays ``origins + s * directions``, ``0 < s < smax``, meet the drawn patch.
+
+        ``own`` (same length, optional) tells for each origin whether it lies on
+        this surface (:data:`ON`), on its contour (:data:`CONTOUR`) or not
+        (:data:`OFF`); a ray never counts its own origin as a hit.
+        Directions need not be unit vectors; ``s`` is measured in their units.
+        """
+        raise NotImplementedError(
+            f"{type(self).__name__} cannot hide anything yet: override hits(...)"
+        )
+
+    def describe(self) -> str:
+        return repr(self)
