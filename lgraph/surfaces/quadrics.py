@@ -201,7 +201,7 @@ class _Ellipsoidal(Quadric):
             center = n / nn
             radius = float(np.sqrt(1.0 - 1.0 / nn))
         else:
-            n = projector.frame[2] * ax  # direction maps by the inverse transpose
+            n = projector.frame[2] / ax  # (A x).d = 0  <=>  y.(d / axes) = 0
             center = np.zeros(3)
             radius = 1.0
         e1, e2 = _plane_basis(n)
