@@ -295,6 +295,7 @@ class Drawing:
         os.close(fd)
         try:
             writer(self, Path(tmp), **options)
+            os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files
             os.replace(tmp, path)
         except BaseException:
             try:
@@ -303,6 +304,12 @@ class Drawing:
                 pass
             raise
         return path
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 def dash_polyline(points: np.ndarray, pattern: Sequence[float]) -> list[np.ndarray]:

@@ -103,9 +103,11 @@ class ParallelProjector(Projector):
         return cls(direction=_direction_from_angles(azimuth, elevation))
 
     def project(self, points: np.ndarray) -> np.ndarray:
-        p = np.asarray(points, dtype=float)
-        e1, e2, _ = self.frame
-        return np.stack([p @ e1, p @ e2], axis=-1)
+        return np.asarray(points, dtype=float) @ self._plane
+
+    @property
+    def _plane(self) -> np.ndarray:
+        return np.column_stack(self.frame[:2])
 
     def rays(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         p = np.asarray(points, dtype=float)
@@ -174,12 +176,13 @@ class CentralProjector(Projector):
         return (self.eye - np.asarray(points, dtype=float)) @ self.frame[2]
 
     def project(self, points: np.ndarray) -> np.ndarray:
-        p = np.asarray(points, dtype=float) - self.eye
-        e1, e2, e3 = self.frame
-        depth = -(p @ e3)
+        q = (np.asarray(points, dtype=float) - self.eye) @ self._basis
         with np.errstate(divide="ignore", invalid="ignore"):
-            f = self.distance / depth
-        return np.stack([(p @ e1) * f, (p @ e2) * f], axis=-1)
+            return q[..., :2] * (-self.distance / q[..., 2:])
+
+    @property
+    def _basis(self) -> np.ndarray:
+        return np.column_stack(self.frame)
 
     def rays(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         w = self.eye - np.asarray(points, dtype=float)

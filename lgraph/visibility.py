@@ -22,7 +22,9 @@ from . import _tolerance as tol
 from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
 from .geometry.transforms import Transform
 from .projectors import CentralProjector, ParallelProjector, Projector
-from .surfaces._base import OFF
+from .surfaces._base import CONTOUR, OFF
+from .surfaces._quadric_ray import quadric_coefficients_world, quadric_ray_hits
+from .surfaces.quadrics import Quadric
 
 if TYPE_CHECKING:
     from .curves import CurveBatch
@@ -65,6 +67,7 @@ class _Samples:
     uv: np.ndarray | None
     xy: np.ndarray
     hidden: np.ndarray | None = None
+    cause: np.ndarray | None = None  # grouped quadric hiding each sample, or -1
 
 
 def _evaluate(
@@ -148,11 +151,19 @@ def _refine(s: _Samples, projector: Projector, abs_tol: float) -> None:
 
 
 class _Visibility:
-    """Tests world points against every hiding surface of the scene."""
+    """Tests world points against every hiding surface of the scene.
+
+    Closed quadrics (ellipsoids, spheres, ...) are tested all at once: their
+    coefficients are moved to world coordinates and gathered per (point,
+    quadric) pair found by a uniform grid over their projected bounding boxes,
+    so the cost does not grow with the number of nodes.  Every other surface
+    is asked through its own ``hits`` for the points inside its box.
+    """
 
     def __init__(self, nodes: tuple[Node, ...], projector: Projector) -> None:
         self.projector = projector
-        self.items = []
+        self.items = []  # (node index, surface, inverse transform, box) asked one by one
+        quads = []  # (node index, box, A_w, b_w, d_w, eps) tested together
         for j, node in enumerate(nodes):
             surf = node.surface
             if surf is None or not node.hides:
@@ -167,26 +178,130 @@ class _Visibility:
             if not isinstance(projector, CentralProjector) or np.all(projector.depth(wc) > 0):
                 pc = projector.project(wc)
                 box = (pc.min(axis=0), pc.max(axis=0))
-            self.items.append((j, surf, inv, box))
+            if isinstance(surf, Quadric) and surf.closed and box is not None:
+                A, b, d = quadric_coefficients_world(*surf.coefficients, inv.matrix, inv.offset)
+                size = float(np.linalg.norm(wc.max(axis=0) - wc.min(axis=0)))
+                quads.append((j, box, A, b, d, tol.SELF_HIT_RTOL * size))
+            else:
+                self.items.append((j, surf, inv, box))
+        self._setup_grid(quads)
+
+    def _setup_grid(self, quads: list) -> None:
+        self.nq = len(quads)
+        if not quads:
+            return
+        self.q_node = np.array([q[0] for q in quads])
+        self.q_box = np.array([[*q[1][0], *q[1][1]] for q in quads])  # x0 y0 x1 y1
+        self.q_A = np.array([q[2] for q in quads])
+        self.q_b = np.array([q[3] for q in quads])
+        self.q_d = np.array([q[4] for q in quads])
+        self.q_eps = np.array([q[5] for q in quads])
+        # ellipsoids (A positive definite): a continuous hiding margin exists
+        self.q_pd = np.all(np.linalg.eigvalsh(self.q_A) > 0, axis=1)
+        pad = 1e-9 * (np.ptp(self.q_box[:, [0, 2]]) + np.ptp(self.q_box[:, [1, 3]]) + 1.0)
+        self.q_box += np.array([-pad, -pad, pad, pad])
+        g = max(1, int(2 * np.sqrt(self.nq)))
+        x0, y0 = self.q_box[:, 0].min(), self.q_box[:, 1].min()
+        x1, y1 = self.q_box[:, 2].max(), self.q_box[:, 3].max()
+        self.grid = (g, x0, y0, max(x1 - x0, 1e-300) / g, max(y1 - y0, 1e-300) / g)
+        cells: list[list[int]] = [[] for _ in range(g * g)]
+        for i, (bx0, by0, bx1, by1) in enumerate(self.q_box):
+            cx = self._cell(np.array([bx0, bx1]), 1)
+            cy = self._cell(np.array([by0, by1]), 2)
+            for yy in range(cy[0], cy[1] + 1):
+                for xx in range(cx[0], cx[1] + 1):
+                    cells[yy * g + xx].append(i)
+        counts = np.array([len(c) for c in cells])
+        self.cell_start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        self.cell_count = counts
+        self.cell_items = np.array([i for c in cells for i in c], dtype=np.int64)
+
+    def _cell(self, values: np.ndarray, axis: int) -> np.ndarray:
+        g, origin, size = self.grid[0], self.grid[axis], self.grid[axis + 2]
+        return np.clip(((values - origin) / size).astype(np.int64), 0, g - 1)
+
+    def _quadric_pairs(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(point, quadric) index pairs whose projected box contains the point."""
+        g = self.grid[0]
+        cell = self._cell(xy[:, 1], 2) * g + self._cell(xy[:, 0], 1)
+        counts = self.cell_count[cell]
+        pt = np.repeat(np.arange(len(xy)), counts)
+        first = np.repeat(self.cell_start[cell] + counts - np.cumsum(counts), counts)
+        q = self.cell_items[first + np.arange(len(pt))]
+        box = self.q_box[q]
+        p = xy[pt]
+        inside = (p[:, 0] >= box[:, 0]) & (p[:, 0] <= box[:, 2])
+        inside &= (p[:, 1] >= box[:, 1]) & (p[:, 1] <= box[:, 3])
+        return pt[inside], q[inside]
 
     def hidden(
-        self, xyz: np.ndarray, xy: np.ndarray, owner: np.ndarray, kind: np.ndarray
+        self,
+        xyz: np.ndarray,
+        xy: np.ndarray,
+        owner: np.ndarray,
+        kind: np.ndarray,
+        cause: np.ndarray | None = None,
     ) -> np.ndarray:
+        """Hidden flags; ``cause`` (optional output) receives, for points hidden
+        by a grouped quadric, that quadric's index (else -1)."""
         dirs, smax = self.projector.rays(xyz)
         out = np.zeros(len(xyz), dtype=bool)
+        if cause is not None:
+            cause[:] = -1
+        if self.nq:
+            pt, q = self._quadric_pairs(xy)
+            own = np.where(owner[pt] == self.q_node[q], kind[pt], OFF).astype(np.int8)
+            h = quadric_ray_hits(
+                xyz[pt], dirs[pt], smax[pt], own,
+                self.q_A[q], self.q_b[q], self.q_d[q], self.q_eps[q],
+            )  # fmt: skip
+            out[pt[h]] = True
+            if cause is not None:
+                cause[pt[h]] = q[h]
+        if not self.items:
+            return out
+        # other surfaces: cull by the projected bounding box; points sorted by
+        # x, so each box selects a contiguous slab that is then filtered by y
+        order = np.argsort(xy[:, 0], kind="stable")
+        xs = xy[order, 0]
         for j, surf, inv, box in self.items:
-            cand = ~out
-            if box is not None:
-                pad = 1e-9 * float(np.max(box[1] - box[0]) + 1.0)
-                cand &= np.all((xy >= box[0] - pad) & (xy <= box[1] + pad), axis=1)
-            idx = np.nonzero(cand)[0]
+            if box is None:
+                idx = np.arange(len(xyz))
+            else:
+                (x0, y0), (x1, y1) = box
+                pad = 1e-9 * (max(x1 - x0, y1 - y0) + 1.0)
+                a, b = np.searchsorted(xs, [x0 - pad, x1 + pad])
+                idx = order[a:b]
+                y = xy[idx, 1]
+                idx = idx[(y >= y0 - pad) & (y <= y1 + pad)]
             if not len(idx):
                 continue
             own = np.where(owner[idx] == j, kind[idx], OFF).astype(np.int8)
             o = inv.apply(xyz[idx])
             v = inv.apply_vector(dirs[idx])
-            out[idx] = surf.hits(o, v, smax[idx], own)
+            out[idx] |= surf.hits(o, v, smax[idx], own)
         return out
+
+    def margin(
+        self, xyz: np.ndarray, q: np.ndarray, owner: np.ndarray, kind: np.ndarray
+    ) -> np.ndarray:
+        """Continuous function, positive exactly where ellipsoid ``q`` hides the point.
+
+        With ``qa s^2 + qb s + qc`` the ray's quadratic (``qa > 0``): a point on
+        the ellipsoid is hidden by it iff ``s2 = -qb/qa > 0``; any other point
+        iff it is inside (``qc < 0``) or the ray meets the ellipsoid ahead
+        (``disc >= 0`` and ``qb < 0``).  Used to find flips by regula falsi.
+        """
+        dirs, _ = self.projector.rays(xyz)
+        A, b, d = self.q_A[q], self.q_b[q], self.q_d[q]
+        Av = np.einsum("nij,nj->ni", A, dirs)
+        qa = np.einsum("ni,ni->n", dirs, Av)
+        qb = 2 * np.einsum("ni,ni->n", xyz, Av) + np.einsum("ni,ni->n", dirs, b)
+        qc = np.einsum("ni,nij,nj->n", xyz, A, xyz) + np.einsum("ni,ni->n", xyz, b) + d
+        s_sum = -qb / qa  # r1 + r2
+        foreign = np.maximum(-qc / qa, np.minimum((qb * qb - 4 * qa * qc) / (4 * qa * qa), s_sum))
+        own = owner == self.q_node[q]
+        return np.where(own, np.where(kind == CONTOUR, -1.0, s_sum), foreign)
 
 
 def _owner_arrays(s: _Samples, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -195,52 +310,166 @@ def _owner_arrays(s: _Samples, n: int) -> tuple[np.ndarray, np.ndarray]:
     return np.full(n, s.node), np.full(n, s.batch.own, np.int8)
 
 
-def _bisect(all_s: list[_Samples], vis: _Visibility, projector: Projector) -> None:
-    """Locate every visibility flip to near machine precision; insert both sides."""
-    flips = []
-    for s in all_s:
+def _flip_data(all_s: list[_Samples]) -> dict[int, dict[str, np.ndarray]]:
+    """For each sample set with flips: brackets ``lo < hi`` and their states."""
+    out = {}
+    for k, s in enumerate(all_s):
         f = np.nonzero((s.cid[1:] == s.cid[:-1]) & (s.hidden[1:] != s.hidden[:-1]))[0]
-        flips.append(f)
-    lo = [s.t[f] for s, f in zip(all_s, flips)]
-    hi = [s.t[f + 1] for s, f in zip(all_s, flips)]
-    hlo = [s.hidden[f] for s, f in zip(all_s, flips)]
-    cids = [s.cid[f] for s, f in zip(all_s, flips)]
-    active = [k for k, f in enumerate(flips) if len(f)]
+        if len(f):
+            out[k] = {"f": f, "lo": s.t[f], "hi": s.t[f + 1], "hlo": s.hidden[f], "cid": s.cid[f]}
+    return out
+
+
+def _converged(s: _Samples, cid: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    span = (s.batch.t1 - s.batch.t0)[cid]
+    return (hi - lo) <= tol.BISECTION_RTOL * np.maximum(span, np.abs(lo))
+
+
+def _regula_falsi(all_s, flips, vis, projector) -> None:  # noqa: ANN001
+    """Flips caused by an ellipsoid: regula falsi (Illinois) on its continuous
+    hiding margin, a handful of steps instead of dozens; each result is
+    verified with the full visibility test, and brackets that fail stay for
+    :func:`_k_section`."""
+    if not vis.nq:
+        return
+    work = {}
+    for k, fd in flips.items():
+        s = all_s[k]
+        f, hlo = fd["f"], fd["hlo"]
+        hid_end = np.where(hlo, f, f + 1)
+        q = s.cause[hid_end]
+        ok = q >= 0
+        ok[ok] = vis.q_pd[q[ok]]
+        if not ok.any():
+            continue
+        idx = np.nonzero(ok)[0]
+        owner, kind = _owner_arrays(s, len(idx))
+        vis_end = np.where(hlo, f + 1, f)[idx]
+        ma = vis.margin(s.xyz[vis_end], q[idx], owner, kind)
+        mb = vis.margin(s.xyz[hid_end[idx]], q[idx], owner, kind)
+        good = (ma <= 0) & (mb > 0)
+        if not good.any():
+            continue
+        idx = idx[good]
+        a = np.where(hlo[idx], fd["hi"][idx], fd["lo"][idx])  # visible end
+        b = np.where(hlo[idx], fd["lo"][idx], fd["hi"][idx])  # hidden end
+        work[k] = [idx, q[idx], a, b, ma[good], mb[good], np.zeros(len(idx), np.int8)]
     for _ in range(tol.BISECTION_MAX_STEPS):
-        mids, evals = [], []
-        for k in active:
+        active = False
+        for k, (idx, q, a, b, fa, fb, kept) in work.items():
             s = all_s[k]
-            span = (s.batch.t1 - s.batch.t0)[cids[k]]
-            go = (hi[k] - lo[k]) > tol.BISECTION_RTOL * np.maximum(span, np.abs(lo[k]))
+            cid = flips[k]["cid"][idx]
+            go = ~_converged(s, cid, np.minimum(a, b), np.maximum(a, b))
             if not go.any():
                 continue
-            idx = np.nonzero(go)[0]
-            tm = 0.5 * (lo[k][idx] + hi[k][idx])
-            xyz, _, xy = _evaluate(s.batch, s.transform, projector, cids[k][idx], tm)
-            owner, kind = _owner_arrays(s, len(idx))
-            mids.append((k, idx, tm))
-            evals.append((xyz, xy, owner, kind))
-        if not mids:
+            active = True
+            g = np.nonzero(go)[0]
+            span = (s.batch.t1 - s.batch.t0)[cid[g]]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = a[g] - fa[g] * (b[g] - a[g]) / (fb[g] - fa[g])
+            w = b[g] - a[g]  # signed: from the visible end to the hidden end
+            u = (t - a[g]) / w  # position in the bracket, 0..1
+            u = np.where((u > 0) & (u < 1), u, 0.5)
+            # the estimate and a point just past it on either side: near the
+            # root these straddle it and the bracket collapses at once
+            step = 0.5 * tol.BISECTION_RTOL * np.maximum(span, np.abs(t)) / np.abs(w)
+            uu = np.clip(u[:, None] + np.array([-1.0, 0.0, 1.0]) * step[:, None], 0.0, 1.0)
+            tt = a[g, None] + uu * w[:, None]
+            xyz, _, _ = _evaluate(s.batch, s.transform, projector, np.repeat(cid[g], 3), tt.ravel())
+            owner, kind = _owner_arrays(s, 3 * len(g))
+            m = vis.margin(xyz, np.repeat(q[g], 3), owner, kind).reshape(-1, 3)
+            hid = m > 0
+            first = np.where(hid.any(axis=1), hid.argmax(axis=1), 3)  # first hidden point
+            rows = np.arange(len(g))
+            new_b = first < 3
+            new_a = first > 0
+            gb, ga = g[new_b], g[new_a]
+            b[gb], fb[gb] = tt[rows[new_b], first[new_b]], m[rows[new_b], first[new_b]]
+            a[ga], fa[ga] = tt[rows[new_a], first[new_a] - 1], m[rows[new_a], first[new_a] - 1]
+            # Illinois: an end kept twice in a row has its value halved
+            only_a, only_b = new_a & ~new_b, new_b & ~new_a
+            fb[g[only_a & (kept[g] == 2)]] *= 0.5
+            fa[g[only_b & (kept[g] == 1)]] *= 0.5
+            kept[g] = np.where(only_a, 2, np.where(only_b, 1, 0))
+        if not active:
             break
-        h = vis.hidden(
-            np.concatenate([e[0] for e in evals]),
-            np.concatenate([e[1] for e in evals]),
-            np.concatenate([e[2] for e in evals]),
-            np.concatenate([e[3] for e in evals]),
-        )
-        pos = 0
-        for k, idx, tm in mids:
-            hk = h[pos : pos + len(idx)]
-            pos += len(idx)
-            same = hk == hlo[k][idx]
-            lo[k][idx[same]] = tm[same]
-            hi[k][idx[~same]] = tm[~same]
-    for k in active:
+    # verify with the full test; accepted brackets replace the originals
+    checks = []
+    for k, (idx, _q, a, b, *_rest) in work.items():
         s = all_s[k]
-        t = np.concatenate([lo[k], hi[k]])
-        c = np.concatenate([cids[k], cids[k]])
+        c = flips[k]["cid"][idx]
+        xyz, _, xy = _evaluate(s.batch, s.transform, projector, np.concatenate([c, c]),
+                               np.concatenate([a, b]))  # fmt: skip
+        owner, kind = _owner_arrays(s, 2 * len(idx))
+        checks.append((xyz, xy, owner, kind))
+    if not checks:
+        return
+    h = vis.hidden(*(np.concatenate([e[i] for e in checks]) for i in range(4)))
+    pos = 0
+    for k, (idx, _q, a, b, *_rest) in work.items():
+        n = len(idx)
+        ha, hb = h[pos : pos + n], h[pos + n : pos + 2 * n]
+        pos += 2 * n
+        fd = flips[k]
+        ok = ~ha & hb & _converged(all_s[k], fd["cid"][idx], np.minimum(a, b), np.maximum(a, b))
+        sel = idx[ok]
+        hl = fd["hlo"][sel]
+        fd["lo"][sel] = np.where(hl, b[ok], a[ok])
+        fd["hi"][sel] = np.where(hl, a[ok], b[ok])
+
+
+def _k_section(all_s, flips, vis, projector) -> None:  # noqa: ANN001
+    """Remaining flips: each step splits every bracket into ``K`` parts at once
+    (the exactness of bisection in ``1/log2(K)`` of the steps), keeping the
+    first sub-bracket whose ends differ; ``K`` shrinks as the flips grow."""
+    n_flips = sum(
+        int((~_converged(all_s[k], fd["cid"], fd["lo"], fd["hi"])).sum()) for k, fd in flips.items()
+    )
+    K = 2 ** int(np.clip(np.log2(tol.SECTION_POINTS / max(n_flips, 1)), 1, np.log2(tol.SECTIONS)))
+    frac = np.arange(1, K) / K
+    for _ in range(tol.BISECTION_MAX_STEPS):
+        work, evals = [], []
+        for k, fd in flips.items():
+            s = all_s[k]
+            lo, hi, cid = fd["lo"], fd["hi"], fd["cid"]
+            idx = np.nonzero(~_converged(s, cid, lo, hi))[0]
+            if not len(idx):
+                continue
+            tm = (lo[idx, None] + (hi[idx] - lo[idx])[:, None] * frac).ravel()
+            cm = np.repeat(cid[idx], K - 1)
+            xyz, _, xy = _evaluate(s.batch, s.transform, projector, cm, tm)
+            owner, kind = _owner_arrays(s, len(tm))
+            work.append((k, idx, tm.reshape(-1, K - 1)))
+            evals.append((xyz, xy, owner, kind))
+        if not work:
+            break
+        h = vis.hidden(*(np.concatenate([e[i] for e in evals]) for i in range(4)))
+        pos = 0
+        for k, idx, tm in work:
+            fd = flips[k]
+            n = tm.size
+            differs = h[pos : pos + n].reshape(tm.shape) != fd["hlo"][idx, None]
+            pos += n
+            # first sub-point whose state differs from lo's; none: flip in the last part
+            first = np.where(differs.any(axis=1), differs.argmax(axis=1), K - 1)
+            rows = np.arange(len(idx))
+            has_lo, has_hi = first > 0, first < K - 1
+            fd["lo"][idx[has_lo]] = tm[rows[has_lo], first[has_lo] - 1]
+            fd["hi"][idx[has_hi]] = tm[rows[has_hi], first[has_hi]]
+
+
+def _locate_flips(all_s: list[_Samples], vis: _Visibility, projector: Projector) -> None:
+    """Locate every visibility flip between two samples to near machine
+    precision (``BISECTION_RTOL`` of the parameter span) and insert both sides."""
+    flips = _flip_data(all_s)
+    _regula_falsi(all_s, flips, vis, projector)
+    _k_section(all_s, flips, vis, projector)
+    for k, fd in flips.items():
+        s = all_s[k]
+        t = np.concatenate([fd["lo"], fd["hi"]])
+        c = np.concatenate([fd["cid"], fd["cid"]])
         xyz, uv, xy = _evaluate(s.batch, s.transform, projector, c, t)
-        _merge(s, c, t, xyz, uv, xy, np.concatenate([hlo[k], ~hlo[k]]))
+        _merge(s, c, t, xyz, uv, xy, np.concatenate([fd["hlo"], ~fd["hlo"]]))
 
 
 def _strokes(s: _Samples, node: Node, hidden_lines: bool, hidden_style: Style) -> list[Stroke]:
@@ -344,10 +573,19 @@ def render(
     for s in samples:
         _refine(s, projector, abs_tol)
     vis = _Visibility(nodes, projector)
-    for s in samples:
-        owner, kind = _owner_arrays(s, len(s.t))
-        s.hidden = vis.hidden(s.xyz, s.xy, owner, kind)
-    _bisect(samples, vis, projector)
+    owners = [_owner_arrays(s, len(s.t)) for s in samples]
+    cause = np.empty(sum(len(s.t) for s in samples), dtype=np.int64)
+    hidden = vis.hidden(
+        np.concatenate([s.xyz for s in samples]),
+        np.concatenate([s.xy for s in samples]),
+        np.concatenate([o for o, _ in owners]),
+        np.concatenate([k for _, k in owners]),
+        cause,
+    )
+    cuts = np.cumsum([len(s.t) for s in samples])[:-1]
+    for s, h, c in zip(samples, np.split(hidden, cuts), np.split(cause, cuts)):
+        s.hidden, s.cause = h, c
+    _locate_flips(samples, vis, projector)
     strokes: list[Stroke] = []
     for s in samples:
         strokes.extend(_strokes(s, nodes[s.node], hidden_lines, hidden_style))

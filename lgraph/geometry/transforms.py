@@ -63,8 +63,10 @@ class Transform:
     def __hash__(self) -> int:
         return hash((self.matrix.tobytes(), self.offset.tobytes()))
 
-    @property
-    def is_identity(self) -> bool:
+    is_identity: bool = attrs.field(init=False, repr=False)
+
+    @is_identity.default
+    def _is_identity(self) -> bool:
         return bool(np.array_equal(self.matrix, np.eye(3)) and not np.any(self.offset))
 
     def apply(self, points: Any) -> np.ndarray:

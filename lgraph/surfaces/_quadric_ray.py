@@ -1,0 +1,99 @@
+"""Ray tests against quadrics, vectorized over rays *and* quadrics.
+
+Used by :meth:`Quadric.hits` (one quadric, many rays) and by the renderer's
+grouped path (many quadric nodes at once, coefficients gathered per ray).
+
+For a ray ``o + s v`` the quadric ``x^T A x + b . x + d`` becomes
+``qa s^2 + qb s + qc``.  A point on the quadric itself has ``qc = 0``: its own
+root is ``s = 0`` and the other one exactly ``s = -qb/qa`` (no discriminant,
+which is ill-conditioned for grazing rays near the contour).  Other points use
+the numerically stable pair ``q / qa``, ``qc / q`` with
+``q = -(qb + sign(qb) sqrt(disc)) / 2``.
+
+>>> import numpy as np
+>>> A = np.eye(3); b = np.zeros(3)
+>>> o = np.array([[0.0, 0.0, 1.0], [3.0, 0.0, 0.0]])     # on the unit sphere / outside
+>>> v = np.array([[0.0, 0.0, -1.0], [1.0, 0.0, 0.0]])
+>>> quadric_ray_hits(o, v, np.inf, np.array([1, 0]), A, b, -1.0, 1e-9).tolist()
+[True, False]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from .._own import CONTOUR, ON
+
+__all__ = ["quadric_ray_hits", "quadric_coefficients_world"]
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.einsum("...i,...i", a, b)
+
+
+def quadric_ray_hits(
+    o: np.ndarray,
+    v: np.ndarray,
+    smax: np.ndarray | float,
+    own: np.ndarray,
+    A: np.ndarray,
+    b: np.ndarray,
+    d: np.ndarray | float,
+    eps: np.ndarray | float,
+    in_patch: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+) -> np.ndarray:
+    """Whether rays meet the quadric(s) at some ``s`` with ``eps < s < smax``.
+
+    ``A`` is ``(3, 3)`` or ``(n, 3, 3)``, ``b`` ``(3,)`` or ``(n, 3)``, ``d``
+    scalar or ``(n,)``.  ``own`` codes: ON (origin on this quadric: only the
+    second root counts), CONTOUR (grazing: never hidden by its own quadric),
+    otherwise a foreign origin.  ``in_patch(points, index)`` (optional) says
+    whether the hit points (rows ``index`` of the rays) lie on the drawn patch.
+    """
+    smax = np.broadcast_to(np.asarray(smax, dtype=float), o.shape[:-1])
+    Av = np.einsum("...ij,...j->...i", A, v) if A.ndim == 3 else v @ A
+    qa = _dot(v, Av)
+    qb = 2 * _dot(o, Av) + _dot(v, b)
+    Ao = np.einsum("...ij,...j->...i", A, o) if A.ndim == 3 else o @ A
+    qc = _dot(o, Ao) + _dot(o, b) + d
+    hit = np.zeros(o.shape[:-1], dtype=bool)
+
+    def accept(s: np.ndarray, mask: np.ndarray, lower: np.ndarray | float) -> np.ndarray:
+        ok = mask & np.isfinite(s) & (s > lower) & (s < smax)
+        if in_patch is not None and ok.any():
+            idx = np.nonzero(ok)[0]
+            ok[idx] = in_patch(o[idx] + s[idx, None] * v[idx], idx)
+        return ok
+
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        on = own == ON
+        if on.any():
+            hit |= accept(-qb / qa, on, 0.0)
+        # contour points: the view ray is tangent (double root at s = 0); it
+        # meets the quadric elsewhere only if it lies on it (a ruling), and
+        # then it does not hide its own contour either.
+        off = (own != ON) & (own != CONTOUR)
+        if off.any():
+            disc = qb * qb - 4 * qa * qc
+            real = off & (disc >= 0)
+            sq = np.sqrt(np.where(real, disc, 0.0))
+            q = -0.5 * (qb + np.copysign(sq, qb))
+            lin = real & (np.abs(qa) <= 1e-14 * (np.abs(qb) + np.abs(qc)) + 1e-300)
+            r1 = np.where(lin, -qc / qb, q / qa)
+            r2 = np.where(lin, np.nan, qc / q)
+            hit |= accept(r1, real, eps) | accept(r2, real, eps)
+    return hit
+
+
+def quadric_coefficients_world(
+    A: np.ndarray, b: np.ndarray, d: float, inverse_matrix: np.ndarray, inverse_offset: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """Coefficients of the same quadric in world coordinates.
+
+    With ``x_local = R x + c`` (``R, c`` the inverse transform):
+    ``A_w = R^T A R``, ``b_w = R^T (2 A c + b)``, ``d_w = c^T A c + b . c + d``.
+    """
+    R, c = inverse_matrix, inverse_offset
+    return R.T @ A @ R, R.T @ (2 * A @ c + b), float(c @ A @ c + b @ c + d)
