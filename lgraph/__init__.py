@@ -16,11 +16,24 @@ from __future__ import annotations
 from .curvature import principal_curvatures, principal_directions
 from .curves import Curve, CurveBatch, CurveOnSurface
 from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
-from .families import Contour, Family, LinesOfCurvature, ParameterLines
+from .families import Contour, Family, LinesOfCurvature, ParameterLines, Umbilics
 from .geometry.transforms import Transform, rotate, scale, translate
 from .projectors import CentralProjector, ParallelProjector, Projector
 from .scene import Node, Scene
 from .surfaces import Domain, Ellipsoid, Quadric, Sphere, Surface
+from .surfaces import GeneralCone, GeneralCylinder, RuledSurface, TangentSurface
+from .surfaces import (
+    ConfocalQuadric,
+    EllipticCone,
+    EllipticCylinder,
+    EllipticParaboloid,
+    HyperbolicCylinder,
+    HyperbolicParaboloid,
+    HyperboloidOneSheet,
+    HyperboloidTwoSheets,
+    ParabolicCylinder,
+    TripleOrthogonalSystem,
+)
 
 __version__ = "0.1.0"
 
@@ -44,13 +57,25 @@ __all__ = [
     "Quadric",
     "Scene",
     "Sphere",
+    "HyperboloidOneSheet",
+    "HyperboloidTwoSheets",
+    "EllipticCone",
+    "EllipticParaboloid",
+    "HyperbolicParaboloid",
+    "EllipticCylinder",
+    "HyperbolicCylinder",
+    "ParabolicCylinder",
+    "ConfocalQuadric",
+    "TripleOrthogonalSystem",
     "Stroke",
     "Style",
     "Surface",
     "Transform",
+    "Umbilics",
     "principal_curvatures",
     "principal_directions",
     "rotate",
     "scale",
     "translate",
 ]
+__all__ += ["RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"]

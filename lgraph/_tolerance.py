@@ -46,3 +46,10 @@ MAX_CURVES = 100_000
 
 #: Largest number of points a single rendered figure may hold.
 MAX_POINTS = 50_000_000
+
+#: Grid samples per curve used to find where a curve leaves its drawn patch
+#: (a patch excursion shorter than 1/384 of the parameter range may be missed).
+CLIP_SAMPLES = 385
+
+#: Bisection steps locating a patch boundary on a curve (near machine precision).
+CLIP_BISECTIONS = 60

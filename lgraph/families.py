@@ -16,14 +16,22 @@ import attrs
 import numpy as np
 
 from ._own import CONTOUR
-from ._validate import count
+from ._validate import count, finite_positive
 from .curves import CurveBatch
 
 if TYPE_CHECKING:
     from .projectors import Projector
     from .surfaces._base import Surface
 
-__all__ = ["Family", "ParameterLines", "Contour", "LinesOfCurvature", "register_family", "FAMILIES"]
+__all__ = [
+    "Family",
+    "ParameterLines",
+    "Contour",
+    "LinesOfCurvature",
+    "Umbilics",
+    "register_family",
+    "FAMILIES",
+]
 
 
 class Family:
@@ -85,8 +93,7 @@ class ParameterLines(Family):
     n2: int = attrs.field(default=10, validator=count("ParameterLines"))
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
-        d = surface.domain
-        return parameter_line_batches(surface, d.lines(0, self.n1), d.lines(1, self.n2))
+        return surface.parameter_lines(self.n1, self.n2)
 
 
 @attrs.frozen
@@ -122,11 +129,34 @@ class LinesOfCurvature(Family):
         return [attrs.evolve(b, family="curvature") for b in method(self.n1, self.n2)]
 
 
+@attrs.frozen
+class Umbilics(Family):
+    """Small circles marking the surface's umbilic points (family ``"umbilic"``).
+
+    Uses ``surface.umbilic_marks(radius)``; ``radius`` defaults to 1.5 % of the
+    patch size.  Surfaces without umbilics draw nothing.
+    """
+
+    radius: float | None = attrs.field(default=None)
+
+    @radius.validator
+    def _check_radius(self, attribute: attrs.Attribute, value: float | None) -> None:
+        if value is not None:
+            finite_positive("Umbilics")(self, attribute, value)
+
+    def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        marks = getattr(surface, "umbilic_marks", None)
+        if marks is None:
+            return []
+        return [curve.batch(family="umbilic") for curve in marks(self.radius)]
+
+
 #: Registry of family classes by name (plugins add to it).
 FAMILIES: dict[str, Any] = {
     "parameter_lines": ParameterLines,
     "contour": Contour,
     "lines_of_curvature": LinesOfCurvature,
+    "umbilics": Umbilics,
 }
 
 

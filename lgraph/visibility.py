@@ -472,8 +472,13 @@ def _locate_flips(all_s: list[_Samples], vis: _Visibility, projector: Projector)
         _merge(s, c, t, xyz, uv, xy, np.concatenate([fd["hlo"], ~fd["hlo"]]))
 
 
-def _strokes(s: _Samples, node: Node, hidden_lines: bool, hidden_style: Style) -> list[Stroke]:
-    """Split samples into runs of equal visibility, one stroke per run."""
+def _strokes(
+    s: _Samples, node: Node, hidden_lines: bool, hidden_style: Style, min_extent: float
+) -> list[Stroke]:
+    """Split samples into runs of equal visibility, one stroke per run.
+
+    Runs whose projection is smaller than ``min_extent`` (degenerate curves such
+    as a parameter circle through a cone's vertex) are dropped."""
     n = len(s.t)
     brk = np.nonzero((s.cid[1:] != s.cid[:-1]) | (s.hidden[1:] != s.hidden[:-1]))[0] + 1
     starts = np.concatenate([[0], brk])
@@ -508,7 +513,7 @@ def _strokes(s: _Samples, node: Node, hidden_lines: bool, hidden_style: Style) -
         else:
             sel = slice(a, b)
         xy = s.xy[sel]
-        if len(xy) < 2:
+        if len(xy) < 2 or np.ptp(xy, axis=0).max() <= min_extent:
             continue
         out.append(
             Stroke(
@@ -588,7 +593,7 @@ def render(
     _locate_flips(samples, vis, projector)
     strokes: list[Stroke] = []
     for s in samples:
-        strokes.extend(_strokes(s, nodes[s.node], hidden_lines, hidden_style))
+        strokes.extend(_strokes(s, nodes[s.node], hidden_lines, hidden_style, 1e-12 * diag))
     return Drawing(strokes=strokes, page=page)
 
 

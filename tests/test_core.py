@@ -190,3 +190,38 @@ def test_style_per_family_and_contour_width():
     assert all(s.style.color == (0.0, 0.0, 0.0) for s in first if s.family == "u2")
     second = [s for s in d.strokes if s.surface is scene.nodes[1].surface]
     assert {s.style.width for s in second if s.family == "contour"} == {1.6}
+
+
+def test_umbilics_family_marks_the_four_umbilics():
+    e = lg.Ellipsoid(3, 2, 1.3)
+    scene = lg.Scene()
+    scene.add(e, lg.Umbilics(radius=0.05))
+    d = scene.render(lg.ParallelProjector(direction=(0.2, -1, 0.4)), hidden_lines=True)
+    marks = [s for s in d.strokes if s.family == "umbilic"]
+    # every mark lies within its radius of an umbilic, and all 4 are marked
+    u = e.umbilics()
+    assert u.shape == (4, 3)
+    near = set()
+    for s in marks:
+        dist = np.linalg.norm(s.xyz[:, None, :] - u[None], axis=2)
+        k = int(np.argmin(dist.min(axis=0)))
+        assert np.allclose(dist[:, k], 0.05, rtol=1e-9)
+        near.add(k)
+    assert near == {0, 1, 2, 3}
+    # an umbilic is one where both principal curvatures agree (independent check)
+    assert np.allclose(np.abs(u[:, 1]), 0) and np.allclose(np.sum((u / [3, 2, 1.3]) ** 2, 1), 1)
+    assert lg.Sphere(1).umbilics().shape == (0, 3)
+    with pytest.raises(ValueError, match="Umbilics: radius must be a positive"):
+        lg.Umbilics(radius=-1)
+
+
+def test_parameter_lines_come_from_the_surface():
+    """Surfaces made of pieces draw their parameter lines per piece (no false
+    line joining the two sheets)."""
+    h = lg.HyperboloidTwoSheets(1, 1.5, 1)
+    scene = lg.Scene()
+    scene.add(h, lg.ParameterLines(4, 6))
+    d = scene.render(lg.ParallelProjector(direction=(1, 0.3, 0.2)), hidden_lines=True)
+    for s in d.strokes:
+        z = s.xyz[:, 2]
+        assert np.all(z > 0) or np.all(z < 0)  # never crosses between the sheets

@@ -1,6 +1,33 @@
 """Surface classes."""
 
 from ._base import CONTOUR, OFF, ON, Domain, Surface
-from .quadrics import Ellipsoid, Quadric, Sphere
+from .confocal import ConfocalQuadric, TripleOrthogonalSystem
+from .quadrics import (
+    Ellipsoid,
+    EllipticCone,
+    EllipticCylinder,
+    EllipticParaboloid,
+    HyperbolicCylinder,
+    HyperbolicParaboloid,
+    HyperboloidOneSheet,
+    HyperboloidTwoSheets,
+    ParabolicCylinder,
+    Quadric,
+    Sphere,
+)
+from .ruled import GeneralCone, GeneralCylinder, RuledSurface, TangentSurface
 
 __all__ = ["CONTOUR", "OFF", "ON", "Domain", "Surface", "Quadric", "Ellipsoid", "Sphere"]
+__all__ += [
+    "HyperboloidOneSheet",
+    "HyperboloidTwoSheets",
+    "EllipticCone",
+    "EllipticParaboloid",
+    "HyperbolicParaboloid",
+    "EllipticCylinder",
+    "HyperbolicCylinder",
+    "ParabolicCylinder",
+    "ConfocalQuadric",
+    "TripleOrthogonalSystem",
+]
+__all__ += ["RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"]

@@ -199,11 +199,35 @@ class Surface:
         return principal_directions(self, u1, u2)
 
     # -- what it draws -------------------------------------------------------
+    def parameter_lines(self, n1: int, n2: int) -> list[CurveBatch]:
+        """``n1`` lines ``u1 = const`` (family ``"u1"``) and ``n2`` lines
+        ``u2 = const`` (``"u2"``), spread by :meth:`Domain.lines`.  Surfaces made
+        of several pieces override this."""
+        from ..families import parameter_line_batches
+
+        d = self.domain
+        return parameter_line_batches(self, d.lines(0, n1), d.lines(1, n2))
+
     def contour(self, projector: Projector) -> list[CurveBatch]:
-        """Contour curves for ``projector`` (given in this surface's local frame)."""
-        raise NotImplementedError(
-            f"{type(self).__name__} has no contour yet: override contour(projector)"
-        )
+        """Contour curves for ``projector`` (given in this surface's local frame).
+
+        Default: numeric (marching squares on ``N . w = 0``, refined by Newton;
+        see :mod:`lgraph.surfaces._numeric`).
+        """
+        from ._numeric import contour
+
+        return contour(self, projector)
+
+    def lines_of_curvature(self, n1: int, n2: int) -> list[CurveBatch]:
+        """``n1`` and ``n2`` lines of the two principal families.
+
+        Default: numeric integration of the principal direction field (see
+        :func:`lgraph.curvature.numeric_lines_of_curvature`); classes with
+        closed forms override it.
+        """
+        from ..curvature import numeric_lines_of_curvature
+
+        return numeric_lines_of_curvature(self, n1, n2)
 
     # -- what it hides -------------------------------------------------------
     def hits(
@@ -219,10 +243,13 @@ class Surface:
         this surface (:data:`ON`), on its contour (:data:`CONTOUR`) or not
         (:data:`OFF`); a ray never counts its own origin as a hit.
         Directions need not be unit vectors; ``s`` is measured in their units.
+
+        Default: numeric (bounding-box hierarchy + Newton; see
+        :mod:`lgraph.surfaces._numeric`).
         """
-        raise NotImplementedError(
-            f"{type(self).__name__} cannot hide anything yet: override hits(...)"
-        )
+        from ._numeric import hits
+
+        return hits(self, origins, directions, smax, own)
 
     def describe(self) -> str:
         return repr(self)

@@ -28,10 +28,7 @@ from ..curves import CurveBatch
 
 __all__ = ["clip_intervals", "spread", "curve_batch"]
 
-#: grid samples per curve used to find where a curve leaves its patch
-CLIP_SAMPLES = 385
-#: bisection steps locating a patch boundary on a curve (near machine precision)
-CLIP_BISECTIONS = 60
+from .._tolerance import CLIP_BISECTIONS, CLIP_SAMPLES
 
 
 def clip_intervals(
