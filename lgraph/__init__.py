@@ -20,19 +20,44 @@ from .families import Contour, Family, LinesOfCurvature, ParameterLines, Umbilic
 from .geometry.transforms import Transform, rotate, scale, translate
 from .projectors import CentralProjector, ParallelProjector, Projector
 from .scene import Node, Scene
-from .surfaces import Domain, Ellipsoid, Quadric, Sphere, Surface
-from .surfaces import GeneralCone, GeneralCylinder, RuledSurface, TangentSurface
+from .surface_curves import (
+    Arrow,
+    AsymptoticLines,
+    Geodesic,
+    IntersectionCurve,
+    Parallelogram,
+    geodesic,
+    intersection_curves,
+)
 from .surfaces import (
     ConfocalQuadric,
+    Domain,
+    Ellipsoid,
     EllipticCone,
     EllipticCylinder,
     EllipticParaboloid,
+    GeneralCone,
+    GeneralCylinder,
     HyperbolicCylinder,
     HyperbolicParaboloid,
     HyperboloidOneSheet,
     HyperboloidTwoSheets,
     ParabolicCylinder,
+    Quadric,
+    RuledSurface,
+    Sphere,
+    Surface,
+    TangentSurface,
     TripleOrthogonalSystem,
+)
+from .surfaces.parametric import (
+    Catenoid,
+    DupinCyclide,
+    Enneper,
+    Helicoid,
+    MonkeySaddle,
+    ParametricSurface,
+    Torus,
 )
 
 __version__ = "0.1.0"
@@ -79,3 +104,19 @@ __all__ = [
     "translate",
 ]
 __all__ += ["RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"]
+__all__ += [
+    "ParametricSurface",
+    "Torus",
+    "DupinCyclide",
+    "MonkeySaddle",
+    "Helicoid",
+    "Catenoid",
+    "Enneper",
+    "AsymptoticLines",
+    "Geodesic",
+    "geodesic",
+    "IntersectionCurve",
+    "intersection_curves",
+    "Arrow",
+    "Parallelogram",
+]

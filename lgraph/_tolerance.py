@@ -53,3 +53,20 @@ CLIP_SAMPLES = 385
 
 #: Bisection steps locating a patch boundary on a curve (near machine precision).
 CLIP_BISECTIONS = 60
+
+# -- ruled surfaces (lgraph.surfaces.ruled) ----------------------------------
+#: grazing rays from contour points: roots closer than this (times the size)
+#: to the origin are the origin's own tangency, not an occluder
+RULED_CONTOUR_SELF_RTOL = 1e-6
+#: ray-ruling scan: cells per radian of turning and per patch diameter of edge length
+RULED_CELLS_PER_UNIT = 8
+RULED_MIN_CELLS = 64
+RULED_MAX_CELLS = 4096
+#: samples used to measure a directrix (turning, lengths, bounds)
+RULED_PRE_SAMPLES = 2049
+#: root refinement stops at this relative bracket width
+RULED_XTOL = 4e-16
+#: matrix entries per chunk when scanning rays (memory bound)
+RULED_CHUNK = 1 << 21
+#: a ruled surface is developable when det(y', z, z') is below this (relative)
+RULED_DEVELOPABLE_RTOL = 1e-7

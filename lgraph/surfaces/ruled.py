@@ -55,29 +55,36 @@ import attrs
 import numpy as np
 
 from .._own import CONTOUR
+from .._tolerance import (
+    RULED_CELLS_PER_UNIT as _CELLS_PER_UNIT,
+)
+from .._tolerance import (
+    RULED_CHUNK as _CHUNK,
+)
+from .._tolerance import (
+    RULED_CONTOUR_SELF_RTOL as _CONTOUR_SELF_RTOL,
+)
+from .._tolerance import (
+    RULED_DEVELOPABLE_RTOL as _DEVELOPABLE_RTOL,
+)
+from .._tolerance import (
+    RULED_MAX_CELLS as _MAX_CELLS,
+)
+from .._tolerance import (
+    RULED_MIN_CELLS as _MIN_CELLS,
+)
+from .._tolerance import (
+    RULED_PRE_SAMPLES as _PRE_SAMPLES,
+)
+from .._tolerance import (
+    RULED_XTOL as _XTOL,
+)
 from .._tolerance import SELF_HIT_RTOL
 from .._validate import interval, vector3
 from ..curves import Curve, CurveBatch
 from ._base import Domain, Surface
 
 __all__ = ["RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"]
-
-# -- tolerances and grid density of this module (relative values) -----------
-#: grazing rays from contour points: roots closer than this (times the size)
-#: to the origin are the origin's own tangency, not an occluder
-_CONTOUR_SELF_RTOL = 1e-6
-#: scan cells per radian of turning and per patch diameter of edge length
-_CELLS_PER_UNIT = 8
-_MIN_CELLS = 64
-_MAX_CELLS = 4096
-#: samples used to measure the curve (turning, lengths, bounds)
-_PRE_SAMPLES = 2049
-#: root refinement stops at this relative bracket width
-_XTOL = 4e-16
-#: matrix entries per chunk when scanning rays
-_CHUNK = 1 << 21
-#: a ruled surface is developable when det(y', z, z') is below this (relative)
-_DEVELOPABLE_RTOL = 1e-7
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 
@@ -282,7 +289,9 @@ class _Ruled(Surface):
         Z1 = np.broadcast_to(Z1, Y.shape)
         # bounds: the patch lies in the hull of its u2 edges (rulings are straight);
         # pad by the chord error of the sampled edges
-        chord = max(float(np.abs(e[:-2] - 2 * e[1:-1] + e[2:]).max()) for e in (y + lo * z, y + hi * z))
+        chord = max(
+            float(np.abs(e[:-2] - 2 * e[1:-1] + e[2:]).max()) for e in (y + lo * z, y + hi * z)
+        )
         pad = 0.01 * diam + chord
         grid = {
             "u": nodes,
@@ -526,6 +535,7 @@ class _Ruled(Surface):
     def _contour_general(self, projector: Any) -> list[CurveBatch]:
         c = self.directrix
         lo, hi = self.u2_range
+
         def edge(u2: float) -> Callable[[np.ndarray], np.ndarray]:
             def f(x: np.ndarray) -> np.ndarray:
                 A, B = self._AB(x, projector)
@@ -568,9 +578,7 @@ class _Ruled(Surface):
         grid = self._grid()
         nodes = grid["u"]
         if "S" not in self._cache:
-            self._cache["S"] = np.concatenate(
-                [[0.0], np.cumsum(self._gl(nodes[:-1], nodes[1:]))]
-            )
+            self._cache["S"] = np.concatenate([[0.0], np.cumsum(self._gl(nodes[:-1], nodes[1:]))])
         S = self._cache["S"]
         u = np.asarray(u, float)
         k = np.clip(np.searchsorted(nodes, u, side="right") - 1, 0, len(nodes) - 2)
@@ -599,8 +607,8 @@ class _Ruled(Surface):
         g = self._grid()
         y, y1, _, z, z1, _ = self._rul(g["u"], 1)
         det = np.abs(_dot(np.cross(np.broadcast_to(y1, z.shape), z), np.broadcast_to(z1, z.shape)))
-        scale = np.linalg.norm(y1, axis=-1) * np.linalg.norm(z1, axis=-1) * np.linalg.norm(
-            z, axis=-1
+        scale = (
+            np.linalg.norm(y1, axis=-1) * np.linalg.norm(z1, axis=-1) * np.linalg.norm(z, axis=-1)
         )
         if np.any(det > _DEVELOPABLE_RTOL * (scale.max() + 1e-300)):
             raise ValueError(
@@ -629,19 +637,21 @@ class _Ruled(Surface):
         u = grid["u"]
         lo, hi = self.u2_range
         U2 = self._level_u2(u[None, :], d[:, None])
-        rows, a, b = [], [], []
+        rows, a = [], []
         for bound in (lo, hi):
             r, cols = _flips(U2 - bound)
             if len(r):
                 rows.append(r)
-                a.append(_illinois(
-                    lambda x, s, r=r, bound=bound: self._level_u2(x, d[r[s]]) - bound,
-                    u[cols],
-                    u[cols + 1],
-                    U2[r, cols] - bound,
-                    U2[r, cols + 1] - bound,
-                    grid["xtol"],
-                ))
+                a.append(
+                    _illinois(
+                        lambda x, s, r=r, bound=bound: self._level_u2(x, d[r[s]]) - bound,
+                        u[cols],
+                        u[cols + 1],
+                        U2[r, cols] - bound,
+                        U2[r, cols + 1] - bound,
+                        grid["xtol"],
+                    )
+                )
         rows = np.concatenate(rows) if rows else np.empty(0, int)
         cuts = np.concatenate(a) if a else np.empty(0)
         # per curve: sorted break points, keep the sub-intervals whose middle is inside
