@@ -20,6 +20,7 @@ from .families import Contour, Family, LinesOfCurvature, ParameterLines, Umbilic
 from .geometry.transforms import Transform, rotate, scale, translate
 from .projectors import CentralProjector, ParallelProjector, Projector
 from .scene import Node, Scene
+from .scenefile import SceneFileError, load_scene_file
 from .surface_curves import (
     Arrow,
     AsymptoticLines,
@@ -120,3 +121,4 @@ __all__ += [
     "Arrow",
     "Parallelogram",
 ]
+__all__ += ["load_scene_file", "SceneFileError"]

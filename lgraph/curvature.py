@@ -19,6 +19,9 @@ __all__ = [
     "principal_curvatures",
     "principal_directions",
     "curvature_equation_angle",
+    "numeric_lines_of_curvature",
+    "principal_field",
+    "asymptotic_field",
 ]
 
 
@@ -108,3 +111,390 @@ def curvature_equation_angle(surface: Any, uv: np.ndarray, duv: np.ndarray) -> n
             c = np.abs(np.einsum("ij,ij->i", e, t)) / n
         angles.append(np.where(n > 0, np.arccos(np.clip(c, 0.0, 1.0)), np.pi / 2))
     return np.minimum(angles[0], angles[1])
+
+
+# ---------------------------------------------------------------------------
+# numeric lines of curvature (and other direction-field lines)
+# ---------------------------------------------------------------------------
+#: stop a line where ``(k2 - k1) / (|k1| + |k2| + 1/size)`` falls below this (umbilic)
+UMBILIC_RTOL = 2e-3
+
+
+_W = np.array([1.0, -8.0, 8.0, -1.0]) / 12.0  # fourth-order first-derivative stencil
+_OFF = np.array([-2.0, -1.0, 1.0, 2.0])
+
+
+def smooth_second_derivatives(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
+    """``x11, x12, x22``: analytic when the class has them, else fourth-order
+    finite differences with steps ``2e-3`` of the spans (rounding and
+    truncation errors both near ``1e-11``), smooth enough for ODE solvers."""
+    from .surfaces._base import Surface
+
+    if type(surface).second_derivatives is not Surface.second_derivatives:
+        return surface.second_derivatives(u1, u2)
+    u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+    d = surface.domain
+    h1, h2 = 2e-3 * d.span(0), 2e-3 * d.span(1)
+    f = surface.point
+    x0 = f(u1, u2)
+    w2 = (-1 / 12, 4 / 3, 4 / 3, -1 / 12)
+    x11 = -2.5 * x0
+    x22 = -2.5 * x0
+    for o, w in zip(_OFF, w2):
+        x11 = x11 + w * f(u1 + o * h1, u2)
+        x22 = x22 + w * f(u1, u2 + o * h2)
+    x12 = 0.0
+    for oa, wa in zip(_OFF, _W):
+        for ob, wb in zip(_OFF, _W):
+            x12 = x12 + (wa * wb) * f(u1 + oa * h1, u2 + ob * h2)
+    return x11 / (h1 * h1), x12 / (h1 * h2), x22 / (h2 * h2)
+
+
+def principal_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Parameter-plane principal direction ``(du1, du2)`` of unit 3-D length for
+    the principal curvature ``k1`` (``which == 0``) or ``k2`` (``which == 1``),
+    and the anisotropy ``(k2 - k1) / (|k1| + |k2|)`` (0 at umbilics)."""
+    u1, u2 = uv[:, 0], uv[:, 1]
+    x1, x2 = surface.derivatives(u1, u2)
+    g11 = np.einsum("ij,ij->i", x1, x1)
+    g12 = np.einsum("ij,ij->i", x1, x2)
+    g22 = np.einsum("ij,ij->i", x2, x2)
+    n = np.cross(x1, x2)
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    x11, x12, x22 = smooth_second_derivatives(surface, u1, u2)
+    L11 = np.einsum("ij,ij->i", n, x11)
+    L12 = np.einsum("ij,ij->i", n, x12)
+    L22 = np.einsum("ij,ij->i", n, x22)
+    g = g11 * g22 - g12 * g12
+    H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
+    K = (L11 * L22 - L12 * L12) / g
+    root = np.sqrt(np.maximum(H * H - K, 0.0))
+    k = np.where(which == 0, H - root, H + root)
+    du = _direction_for(k, g11, g12, g22, L11, L12, L22)
+    e = du[:, :1] * x1 + du[:, 1:] * x2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        du = du / np.linalg.norm(e, axis=1, keepdims=True)
+        aniso = 2 * root / (np.abs(H - root) + np.abs(H + root))
+    return du, aniso
+
+
+def asymptotic_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Parameter-plane asymptotic direction (``II(du) = 0``) of unit 3-D length,
+    one of two (``which``), and ``-K / (H^2 + |K|)`` (positive where ``K < 0``)."""
+    u1, u2 = uv[:, 0], uv[:, 1]
+    g11, g12, g22, L11, L12, L22 = fundamental_forms(surface, u1, u2)
+    x1, x2 = surface.derivatives(u1, u2)
+    g = g11 * g22 - g12 * g12
+    K = (L11 * L22 - L12 * L12) / g
+    H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
+    disc = np.sqrt(np.maximum(L12 * L12 - L11 * L22, 0.0))
+    sgn = np.where(which == 0, 1.0, -1.0)
+    # L11 a^2 + 2 L12 a b + L22 b^2 = 0: (a, b) = (-L12 +- disc, L11) or (L22, -L12 -+ disc)
+    va = np.stack([-L12 + sgn * disc, L11], axis=1)
+    vb = np.stack([L22, -L12 - sgn * disc], axis=1)
+    use_a = np.linalg.norm(va, axis=1) >= np.linalg.norm(vb, axis=1)
+    du = np.where(use_a[:, None], va, vb)
+    e = du[:, :1] * x1 + du[:, 1:] * x2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        du = du / np.linalg.norm(e, axis=1, keepdims=True)
+        strength = -K / (H * H + np.abs(K))
+    return du, strength
+
+
+def _smoothstep(x: np.ndarray) -> np.ndarray:
+    x = np.clip(x, 0.0, 1.0)
+    return x * x * (3 - 2 * x)
+
+
+class _FieldLines:
+    """Lines of a direction field integrated together (one ``solve_ivp`` system).
+
+    Each line runs forward and backward from its seed up to ``length`` (3-D arc
+    length), stopping where the field's strength drops below ``stop`` or the
+    line leaves a non-periodic side of the domain, and closing when it returns
+    to its seed.
+    """
+
+    def __init__(
+        self,
+        surface: Any,
+        field: Any,
+        seeds: np.ndarray,
+        which: np.ndarray,
+        length: float,
+        stop: float,
+        rtol: float = 1e-10,
+        atol: float = 1e-12,
+    ) -> None:
+        from scipy.integrate import solve_ivp
+
+        self.surface = surface
+        d = surface.domain
+        self.domain = d
+        seeds = np.asarray(seeds, float).reshape(-1, 2)
+        m = len(seeds)
+        self.m = m
+        size = surface.size
+        du0, _ = field(surface, seeds, which)
+        # orientation: forward along the larger parameter component
+        flip = np.where(np.abs(du0[:, 0]) >= np.abs(du0[:, 1]), du0[:, 0], du0[:, 1]) < 0
+        du0[flip] *= -1
+        span = np.array([d.span(0), d.span(1)])
+        lo = np.array([d.u1[0], d.u2[0]])
+        hi = np.array([d.u1[1], d.u2[1]])
+        per = np.array(d.periodic)
+        self.sols = []
+        for sign in (1.0, -1.0):
+            ref = sign * du0.copy()
+
+            def rhs(_t: float, y: np.ndarray, ref: np.ndarray = ref) -> np.ndarray:
+                uv = y.reshape(m, 2)
+                du, strength = field(surface, uv, which)
+                dot = np.einsum("ij,ij->i", du, ref)
+                du = np.where((dot < 0)[:, None], -du, du)
+                # slow down smoothly (no step-size havoc) past the stopping
+                # places; the ends are cut exactly afterwards
+                speed = _smoothstep((strength - stop) / stop)
+                out = np.maximum(lo - uv, uv - hi) / span  # > 0 outside
+                out = np.where(per, -1.0, out).max(axis=1)
+                speed *= _smoothstep(1.0 - (out - 0.02) / 0.08)
+                ok = np.isfinite(du).all(axis=1) & np.isfinite(speed)
+                du = np.where(ok[:, None], du * np.where(ok, speed, 0.0)[:, None], 0.0)
+                ref[ok & (speed > 0)] = du[ok & (speed > 0)]
+                return du.ravel()
+
+            sol = solve_ivp(
+                rhs,
+                (0.0, length),
+                seeds.ravel(),
+                method="DOP853",
+                dense_output=True,
+                rtol=rtol,
+                atol=atol * max(d.span(0), d.span(1)),
+            )
+            self.sols.append(sol.sol)
+        # where each half ends: sample, then refine the first stop by bisection
+        self.ends = np.zeros((2, m))
+        self.closed = np.zeros(m, bool)
+        n = 4001
+        t = np.linspace(0.0, length, n)
+        start3 = surface.point(seeds[:, 0], seeds[:, 1])
+        for h in (0, 1):
+            Y = self.sols[h](t).reshape(m, 2, n).transpose(0, 2, 1)  # (m, n, 2)
+            bad = self._stopped(Y.reshape(-1, 2), field, which, stop).reshape(m, n)
+            for k in range(m):
+                idx = np.nonzero(bad[k])[0]
+                if not len(idx):
+                    self.ends[h, k] = length
+                    continue
+                a, b = (t[idx[0] - 1], t[idx[0]]) if idx[0] > 0 else (0.0, 0.0)
+                for _ in range(50):
+                    c = 0.5 * (a + b)
+                    yc = self.sols[h](c).reshape(m, 2)[k : k + 1]
+                    if self._stopped(yc, field, which[k : k + 1], stop)[0]:
+                        b = c
+                    else:
+                        a = c
+                self.ends[h, k] = a
+            if h == 0:
+                # closed loops: first return to the seed after leaving it
+                P = surface.point(Y[..., 0], Y[..., 1])
+                dist = np.linalg.norm(P - start3[:, None, :], axis=2)
+                for k in range(m):
+                    far = np.nonzero(dist[k] > 1e-2 * size)[0]
+                    if not len(far):
+                        continue
+                    j0 = far[0]
+                    near = np.nonzero(
+                        (dist[k, j0:] < 0.5 * length / n * 3) & (t[j0:] <= self.ends[0, k])
+                    )[0]
+                    if not len(near):
+                        continue
+                    j = j0 + near[0]
+                    tc = self._closest(k, start3[k], t[max(j - 2, 0)], t[min(j + 2, n - 1)])
+                    if np.linalg.norm(self._point(0, k, tc) - start3[k]) < 1e-6 * size:
+                        self.closed[k] = True
+                        self.ends[0, k] = tc
+                        self.ends[1, k] = 0.0
+
+    def _stopped(self, uv: np.ndarray, field: Any, which: np.ndarray, stop: float) -> np.ndarray:
+        d = self.domain
+        w = which if len(which) == len(uv) else np.repeat(which, len(uv) // len(which))
+        out = np.zeros(len(uv), bool)
+        for i in (0, 1):
+            if not d.periodic[i]:
+                lo, hi = d.range(i)
+                out |= (uv[:, i] < lo) | (uv[:, i] > hi)
+        _, strength = field(self.surface, uv, w)
+        return out | ~(strength > 2 * stop)
+
+    def _point(self, h: int, k: int, t: Any) -> np.ndarray:
+        uv = np.asarray(self.sols[h](t)).reshape(self.m, 2, -1)[k]
+        return self.surface.point(uv[0], uv[1])
+
+    def _closest(self, k: int, target: np.ndarray, a: float, b: float) -> float:
+        from scipy.optimize import minimize_scalar
+
+        res = minimize_scalar(
+            lambda t: float(np.sum((self._point(0, k, t).ravel() - target) ** 2)),
+            bounds=(a, b),
+            method="bounded",
+            options={"xatol": 1e-13 * max(b, 1.0)},
+        )
+        return float(res.x)
+
+    def uv(self, k: int, t: np.ndarray) -> np.ndarray:
+        """Parameters of line ``k`` at signed arc length ``t`` (< 0: backward)."""
+        t = np.asarray(t, float)
+        out = np.empty((len(t), 2))
+        for h, sel in ((0, t >= 0), (1, t < 0)):
+            if sel.any():
+                tt = np.abs(t[sel])
+                out[sel] = np.asarray(self.sols[h](tt)).reshape(self.m, 2, -1)[k].T
+        return out
+
+    def batch(self, family: str, keep: np.ndarray | None = None) -> Any:
+        from .curves import CurveBatch
+
+        d = self.domain
+        ks = np.arange(self.m) if keep is None else np.asarray(keep)
+        ks = ks[(self.ends[0, ks] + self.ends[1, ks]) > 0]
+        surface = self.surface
+
+        def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            idx = np.asarray(idx)
+            uv = np.empty((len(idx), 2))
+            for c in np.unique(idx):
+                sel = idx == c
+                uv[sel] = self.uv(int(ks[c]), t[sel])
+            for i in (0, 1):
+                lo, hi = d.range(i)
+                if d.periodic[i]:
+                    uv[:, i] = lo + np.mod(uv[:, i] - lo, hi - lo)
+                else:
+                    uv[:, i] = np.clip(uv[:, i], lo, hi)
+            return surface.point(uv[:, 0], uv[:, 1]), uv
+
+        return CurveBatch(
+            family,
+            -self.ends[1, ks],
+            self.ends[0, ks],
+            evaluate,
+            closed=self.closed[ks],
+            surface=surface,
+        )
+
+    def samples(self, k: int, n: int = 200) -> np.ndarray:
+        t = np.linspace(-self.ends[1, k], self.ends[0, k], n)
+        uv = self.uv(k, t)
+        return self.surface.point(uv[:, 0], uv[:, 1])
+
+
+def _center_seed(surface: Any, field: Any, stop: float) -> np.ndarray:
+    """A seed near the middle of the domain where the field is well defined."""
+    d = surface.domain
+    f = np.array([0.5, 0.42, 0.58, 0.35, 0.65, 0.3, 0.7, 0.2, 0.8])
+    c1 = d.u1[0] + d.span(0) * f
+    c2 = d.u2[0] + d.span(1) * f[[0, 2, 1, 4, 3, 6, 5, 8, 7]]
+    U = np.stack(np.meshgrid(c1, c2, indexing="ij"), -1).reshape(-1, 2)
+    _, a = field(surface, U, np.zeros(len(U), int))
+    a = np.where(np.isfinite(a), a, -1.0)
+    good = np.nonzero(a > 20 * stop)[0]
+    k = good[0] if len(good) else int(np.argmax(a))
+    return U[k]
+
+
+def _spread(lines: _FieldLines, k: int, n: int) -> np.ndarray:
+    """``n`` parameters evenly spread in arc length along line ``k``."""
+    a, b = -lines.ends[1, k], lines.ends[0, k]
+    if lines.closed[k]:
+        t = a + (b - a) * np.arange(n) / n
+    else:
+        t = a + (b - a) * (np.arange(n) + 0.5) / n
+    return lines.uv(k, t)
+
+
+def field_line_batches(
+    surface: Any,
+    field: Any,
+    n1: int,
+    n2: int,
+    stop: float,
+    family: str = "curvature",
+    fill: bool = True,
+) -> list:
+    """Batches of ``n1`` lines of the field's direction ``which = a`` and ``n2``
+    of ``which = 1 - a``, where ``a`` is chosen so that the first family runs
+    roughly like the ``u1 = const`` lines at the centre of the domain.
+
+    Seeds: evenly spaced in arc length along a line of the other family
+    through the centre; then, if ``fill``, extra seeds where a part of the
+    surface is farther than ``1.5`` spacings from every line of the family.
+    """
+    from scipy.spatial import cKDTree
+
+    size = surface.size
+    length = 3.0 * size
+    c = _center_seed(surface, field, stop)
+    both = _FieldLines(surface, field, np.array([c, c]), np.array([0, 1]), length, stop)
+    du0, _ = field(surface, np.array([c, c]), np.array([0, 1]))
+    x1, x2 = surface.derivatives(c[0], c[1])
+    e = du0[:, :1] * x1 + du0[:, 1:] * x2
+    a = 0 if abs(e[0] @ x2) / np.linalg.norm(x2) >= abs(e[1] @ x2) / np.linalg.norm(x2) else 1
+    out = []
+    d = surface.domain
+    g1 = (
+        np.linspace(*d.u1, 11)[1:-1]
+        if not d.periodic[0]
+        else d.u1[0] + d.span(0) * np.arange(10) / 10
+    )
+    g2 = (
+        np.linspace(*d.u2, 11)[1:-1]
+        if not d.periodic[1]
+        else d.u2[0] + d.span(1) * np.arange(10) / 10
+    )
+    G = np.stack(np.meshgrid(g1, g2, indexing="ij"), -1).reshape(-1, 2)
+    for which, n in ((a, n1), (1 - a, n2)):
+        if n <= 0:
+            continue
+        transversal = 1 - which  # the line of the other family through the centre
+        seeds = _spread(both, transversal, n)
+        L = both.ends[0, transversal] + both.ends[1, transversal]
+        lines = _FieldLines(surface, field, seeds, np.full(n, which), length, stop)
+        batches = [lines.batch(family)]
+        if fill and L > 0:
+            dsep = L / n
+            pts = np.concatenate([lines.samples(k, 400) for k in range(lines.m)])
+            tree = cKDTree(pts)
+            GP = surface.point(G[:, 0], G[:, 1])
+            _, str_ = field(surface, G, np.full(len(G), which))
+            extra = 0
+            while extra < n:
+                dist, _ = tree.query(GP)
+                dist = np.where(str_ > 5 * stop, dist, 0.0)
+                k = int(np.argmax(dist))
+                if dist[k] <= 1.5 * dsep:
+                    break
+                more = _FieldLines(surface, field, G[k : k + 1], np.array([which]), length, stop)
+                batches.append(more.batch(family))
+                pts = np.concatenate([pts, more.samples(0, 400)])
+                tree = cKDTree(pts)
+                extra += 1
+        out.extend(b for b in batches if len(b))
+    return out
+
+
+def numeric_lines_of_curvature(surface: Any, n1: int, n2: int) -> list:
+    """Lines of curvature of any surface, by integrating the principal direction
+    field (``solve_ivp``, DOP853, dense output).
+
+    ``n1`` lines of the family that runs like the ``u1 = const`` lines at the
+    centre of the domain, ``n2`` of the other; lines stop at umbilics and at
+    the domain boundary, and close when they return to their seed.
+
+    >>> import lgraph as lg
+    >>> b = numeric_lines_of_curvature(lg.Torus(3, 1), 2, 0)
+    >>> bool(b[0].closed.all())
+    True
+    """
+    return field_line_batches(surface, principal_field, n1, n2, UMBILIC_RTOL)

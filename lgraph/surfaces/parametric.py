@@ -1,0 +1,412 @@
+"""Surfaces given by a parametrization only, and classic examples.
+
+:class:`ParametricSurface` wraps any function ``(u1, u2) -> (..., 3)``; the
+contour, the ray hits and the lines of curvature then come from the numeric
+defaults of :class:`~lgraph.surfaces._base.Surface`.  The built-in examples
+(:class:`Torus`, :class:`DupinCyclide`, :class:`MonkeySaddle`, :class:`Helicoid`,
+:class:`Catenoid`, :class:`Enneper`) add analytic derivatives.
+
+>>> import numpy as np
+>>> t = Torus(3, 1)
+>>> t.point(np.array([0.0]), np.array([0.0])).tolist()
+[[4.0, 0.0, 0.0]]
+>>> Torus(1, 2)
+Traceback (most recent call last):
+...
+ValueError: Torus: r must be smaller than R (a ring torus), got R=1, r=2
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import attrs
+import numpy as np
+
+from .._validate import as_number, finite_positive, interval
+from ..families import parameter_line_batches
+from ._base import Domain, Surface, _bool_pair
+
+__all__ = [
+    "ParametricSurface",
+    "Torus",
+    "DupinCyclide",
+    "MonkeySaddle",
+    "Helicoid",
+    "Catenoid",
+    "Enneper",
+]
+
+_TWO_PI = 2 * np.pi
+
+
+def _callable(owner: str) -> Callable[[Any, Any, Any], None]:
+    def check(_i: Any, a: Any, v: Any) -> None:
+        if v is not None and not callable(v):
+            raise TypeError(f"{owner}: {a.name} must be callable, got {type(v).__name__}")
+
+    return check
+
+
+def _stack(*c: np.ndarray) -> np.ndarray:
+    c = np.broadcast_arrays(*c)
+    return np.stack(c, axis=-1)
+
+
+def _uv(u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+    return np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+
+
+@attrs.frozen(eq=False)
+class ParametricSurface(Surface):
+    """A surface ``x = func(u1, u2)`` over ``u1_range x u2_range``.
+
+    Parameters
+    ----------
+    func : callable
+        ``func(u1, u2)`` takes broadcastable arrays and returns an array of
+        shape ``broadcast(u1, u2).shape + (3,)``.
+    u1_range, u2_range : (lo, hi)
+        The drawn parameter rectangle.
+    periodic : bool or (bool, bool)
+        Whether ``u1`` / ``u2`` wrap around (the two ends are the same curve).
+    poles : bool or (bool, bool)
+        Whether the ends of ``u1`` / ``u2`` collapse to single points.
+    derivatives_func : callable, optional
+        ``derivatives_func(u1, u2) -> (x1, x2)``; otherwise finite differences.
+
+    Contour, hidden lines and lines of curvature are computed numerically.
+
+    >>> import numpy as np
+    >>> s = ParametricSurface(lambda u, v: np.stack(np.broadcast_arrays(u, v, u * v), -1),
+    ...                       (-1, 1), (-1, 1))
+    >>> s.point(0.5, 2.0).tolist()
+    [0.5, 2.0, 1.0]
+    >>> ParametricSurface(lambda u, v: u, (0, 1), (0, 1))
+    Traceback (most recent call last):
+    ...
+    ValueError: ParametricSurface: func must map arrays of shape (2,) to shape (2, 3), ...
+    >>> ParametricSurface(lambda u, v: u, (1, 0), (0, 1))
+    Traceback (most recent call last):
+    ...
+    ValueError: ParametricSurface: u1_range must be a pair (lo, hi) ... got (1, 0)
+    """
+
+    func: Callable[[np.ndarray, np.ndarray], np.ndarray] = attrs.field(
+        validator=_callable("ParametricSurface")
+    )
+    u1_range: tuple[float, float] = attrs.field(
+        converter=lambda v: interval("ParametricSurface", "u1_range", v)
+    )
+    u2_range: tuple[float, float] = attrs.field(
+        converter=lambda v: interval("ParametricSurface", "u2_range", v)
+    )
+    periodic: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
+    poles: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
+    derivatives_func: Callable[..., tuple[np.ndarray, np.ndarray]] | None = attrs.field(
+        default=None, kw_only=True, validator=_callable("ParametricSurface")
+    )
+
+    def __attrs_post_init__(self) -> None:
+        if self.func is None:
+            raise TypeError("ParametricSurface: func must be callable, got NoneType")
+        u1 = np.array([self.u1_range[0], sum(self.u1_range) / 2])
+        u2 = np.array([self.u2_range[0], sum(self.u2_range) / 2])
+        try:
+            probe = np.asarray(self.func(u1, u2), dtype=float)
+        except Exception as exc:  # noqa: BLE001 - report any failure of user code
+            raise ValueError(f"ParametricSurface: func(u1, u2) failed: {exc!r}") from exc
+        if probe.shape != (2, 3):
+            raise ValueError(
+                "ParametricSurface: func must map arrays of shape (2,) to shape (2, 3), "
+                f"got shape {probe.shape}"
+            )
+
+    @property
+    def domain(self) -> Domain:
+        return Domain(self.u1_range, self.u2_range, periodic=self.periodic, poles=self.poles)
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:
+        u1, u2 = _uv(u1, u2)
+        return np.asarray(self.func(u1, u2), dtype=float)
+
+    def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        if self.derivatives_func is None:
+            return super().derivatives(u1, u2)
+        u1, u2 = _uv(u1, u2)
+        x1, x2 = self.derivatives_func(u1, u2)
+        return np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
+
+
+def _positive(owner: str, default: float | None = None) -> Any:
+    if default is None:
+        return attrs.field(converter=as_number, validator=finite_positive(owner))
+    return attrs.field(default=default, converter=as_number, validator=finite_positive(owner))
+
+
+@attrs.frozen
+class Torus(Surface):
+    """Ring torus ``((R + r cos u2) cos u1, (R + r cos u2) sin u1, r sin u2)``.
+
+    ``u1`` runs around the axis (``z``), ``u2`` around the tube; both periodic.
+    Lines of curvature are the parameter lines (meridians and parallels).
+
+    >>> Torus(2, 0)
+    Traceback (most recent call last):
+    ...
+    ValueError: Torus: r must be a positive finite number, got 0
+    """
+
+    R: float = _positive("Torus")
+    r: float = _positive("Torus")
+
+    def __attrs_post_init__(self) -> None:
+        if not self.r < self.R:
+            raise ValueError(
+                f"Torus: r must be smaller than R (a ring torus), got R={self.R}, r={self.r}"
+            )
+
+    @property
+    def domain(self) -> Domain:
+        return Domain((0.0, _TWO_PI), (0.0, _TWO_PI), periodic=(True, True))
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        e = self.R + self.r
+        return np.array([-e, -e, -self.r]), np.array([e, e, self.r])
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:
+        u1, u2 = _uv(u1, u2)
+        rho = self.R + self.r * np.cos(u2)
+        return _stack(rho * np.cos(u1), rho * np.sin(u1), self.r * np.sin(u2))
+
+    def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        u1, u2 = _uv(u1, u2)
+        rho = self.R + self.r * np.cos(u2)
+        c1, s1, c2, s2 = np.cos(u1), np.sin(u1), np.cos(u2), np.sin(u2)
+        x1 = _stack(-rho * s1, rho * c1, np.zeros_like(u1))
+        x2 = _stack(-self.r * s2 * c1, -self.r * s2 * s1, self.r * c2)
+        return x1, x2
+
+    def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        u1, u2 = _uv(u1, u2)
+        rho = self.R + self.r * np.cos(u2)
+        c1, s1, c2, s2 = np.cos(u1), np.sin(u1), np.cos(u2), np.sin(u2)
+        z = np.zeros_like(u1)
+        x11 = _stack(-rho * c1, -rho * s1, z)
+        x12 = _stack(self.r * s2 * s1, -self.r * s2 * c1, z)
+        x22 = _stack(-self.r * c2 * c1, -self.r * c2 * s1, -self.r * s2)
+        return x11, x12, x22
+
+    def lines_of_curvature(self, n1: int, n2: int) -> list:
+        """Meridians ``u1 = const`` and parallels ``u2 = const`` (exact)."""
+        d = self.domain
+        return parameter_line_batches(self, d.lines(0, n1), d.lines(1, n2))
+
+
+@attrs.frozen
+class DupinCyclide(Surface):
+    """Ring Dupin cyclide with parameters ``a > b > 0``, ``c = sqrt(a^2 - b^2) < d < a``.
+
+    ``x = (d (c - a cos u1 cos u2) + b^2 cos u1, b sin u1 (a - d cos u2),
+    b sin u2 (c cos u1 - d)) / (a - c cos u1 cos u2)``; both parameters periodic.
+    All its lines of curvature are circles: the parameter lines.
+
+    >>> DupinCyclide(2, 1.9, 0.5)
+    Traceback (most recent call last):
+    ...
+    ValueError: DupinCyclide: d must lie strictly between c = sqrt(a^2 - b^2) and a ...
+    """
+
+    a: float = _positive("DupinCyclide", 2.0)
+    b: float = _positive("DupinCyclide", 1.9)
+    d: float = _positive("DupinCyclide", 1.0)
+
+    def __attrs_post_init__(self) -> None:
+        if not self.b < self.a:
+            raise ValueError(f"DupinCyclide: b must be smaller than a, got a={self.a}, b={self.b}")
+        if not self.c < self.d < self.a:
+            raise ValueError(
+                "DupinCyclide: d must lie strictly between c = sqrt(a^2 - b^2) and a "
+                f"(ring cyclide), got a={self.a}, b={self.b}, d={self.d}"
+            )
+
+    @property
+    def c(self) -> float:
+        return float(np.sqrt(self.a**2 - self.b**2))
+
+    @property
+    def domain(self) -> Domain:
+        return Domain((0.0, _TWO_PI), (0.0, _TWO_PI), periodic=(True, True))
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:
+        u1, u2 = _uv(u1, u2)
+        a, b, c, d = self.a, self.b, self.c, self.d
+        c1, s1, c2, s2 = np.cos(u1), np.sin(u1), np.cos(u2), np.sin(u2)
+        den = a - c * c1 * c2
+        return _stack(
+            (d * (c - a * c1 * c2) + b * b * c1) / den,
+            b * s1 * (a - d * c2) / den,
+            b * s2 * (c * c1 - d) / den,
+        )
+
+    def lines_of_curvature(self, n1: int, n2: int) -> list:
+        """Both families of circles: the parameter lines (exact)."""
+        d = self.domain
+        return parameter_line_batches(self, d.lines(0, n1), d.lines(1, n2))
+
+
+@attrs.frozen
+class MonkeySaddle(Surface):
+    """Monkey saddle ``z = u1^3 - 3 u1 u2^2`` over ``[-extent, extent]^2``, scaled by ``c``.
+
+    The origin is a flat umbilic.
+
+    >>> MonkeySaddle(extent=-1)
+    Traceback (most recent call last):
+    ...
+    ValueError: MonkeySaddle: extent must be a positive finite number, got -1
+    """
+
+    extent: float = _positive("MonkeySaddle", 1.0)
+    c: float = _positive("MonkeySaddle", 1.0)
+
+    @property
+    def domain(self) -> Domain:
+        return Domain((-self.extent, self.extent), (-self.extent, self.extent))
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:
+        u1, u2 = _uv(u1, u2)
+        return _stack(u1, u2, self.c * (u1**3 - 3 * u1 * u2**2))
+
+    def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        u1, u2 = _uv(u1, u2)
+        o, z = np.ones_like(u1), np.zeros_like(u1)
+        return (
+            _stack(o, z, self.c * (3 * u1**2 - 3 * u2**2)),
+            _stack(z, o, self.c * (-6 * u1 * u2)),
+        )
+
+    def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        u1, u2 = _uv(u1, u2)
+        z = np.zeros_like(u1)
+        return (
+            _stack(z, z, self.c * 6 * u1),
+            _stack(z, z, self.c * (-6 * u2)),
+            _stack(z, z, self.c * (-6 * u1)),
+        )
+
+
+@attrs.frozen
+class Helicoid(Surface):
+    """Helicoid ``(u1 cos u2, u1 sin u2, c u2)``, ``|u1| <= radius``, ``0 <= u2 <= 2 pi turns``.
+
+    A minimal surface: its lines of curvature bisect the asymptotic lines
+    (the rulings ``u2 = const`` and the helices ``u1 = const``).
+
+    >>> Helicoid(turns=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: Helicoid: turns must be a positive finite number, got 0
+    """
+
+    radius: float = _positive("Helicoid", 1.0)
+    c: float = _positive("Helicoid", 0.25)
+    turns: float = _positive("Helicoid", 1.0)
+
+    @property
+    def domain(self) -> Domain:
+        return Domain((-self.radius, self.radius), (0.0, _TWO_PI * self.turns))
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:
+        u1, u2 = _uv(u1, u2)
+        return _stack(u1 * np.cos(u2), u1 * np.sin(u2), self.c * u2)
+
+    def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        u1, u2 = _uv(u1, u2)
+        c2, s2 = np.cos(u2), np.sin(u2)
+        return (
+            _stack(c2, s2, np.zeros_like(u1)),
+            _stack(-u1 * s2, u1 * c2, np.full_like(u1, self.c)),
+        )
+
+    def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        u1, u2 = _uv(u1, u2)
+        c2, s2, z = np.cos(u2), np.sin(u2), np.zeros_like(u1)
+        return _stack(z, z, z), _stack(-s2, c2, z), _stack(-u1 * c2, -u1 * s2, z)
+
+
+@attrs.frozen
+class Catenoid(Surface):
+    """Catenoid ``(c cosh(u2/c) cos u1, c cosh(u2/c) sin u1, u2)``, ``|u2| <= height``.
+
+    ``u1`` is periodic.  Minimal; its lines of curvature are the meridians and
+    parallels.
+
+    >>> Catenoid(c="1")
+    Traceback (most recent call last):
+    ...
+    ValueError: Catenoid: c must be a positive finite number, got '1'
+    """
+
+    c: float = _positive("Catenoid", 1.0)
+    height: float = _positive("Catenoid", 1.2)
+
+    @property
+    def domain(self) -> Domain:
+        return Domain((0.0, _TWO_PI), (-self.height, self.height), periodic=(True, False))
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:
+        u1, u2 = _uv(u1, u2)
+        rho = self.c * np.cosh(u2 / self.c)
+        return _stack(rho * np.cos(u1), rho * np.sin(u1), u2)
+
+    def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        u1, u2 = _uv(u1, u2)
+        rho = self.c * np.cosh(u2 / self.c)
+        sh = np.sinh(u2 / self.c)
+        return (
+            _stack(-rho * np.sin(u1), rho * np.cos(u1), np.zeros_like(u1)),
+            _stack(sh * np.cos(u1), sh * np.sin(u1), np.ones_like(u1)),
+        )
+
+
+@attrs.frozen
+class Enneper(Surface):
+    """Enneper's minimal surface
+    ``(u1 - u1^3/3 + u1 u2^2, u2 - u2^3/3 + u2 u1^2, u1^2 - u2^2)`` over
+    ``[-extent, extent]^2`` (embedded for ``extent`` below about 1.2).
+
+    Its lines of curvature are the parameter lines.
+
+    >>> Enneper(extent=float("inf"))
+    Traceback (most recent call last):
+    ...
+    ValueError: Enneper: extent must be a positive finite number, got inf
+    """
+
+    extent: float = _positive("Enneper", 1.2)
+
+    @property
+    def domain(self) -> Domain:
+        return Domain((-self.extent, self.extent), (-self.extent, self.extent))
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:
+        u, v = _uv(u1, u2)
+        return _stack(u - u**3 / 3 + u * v * v, v - v**3 / 3 + v * u * u, u * u - v * v)
+
+    def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
+        u, v = _uv(u1, u2)
+        return (
+            _stack(1 - u * u + v * v, 2 * u * v, 2 * u),
+            _stack(2 * u * v, 1 - v * v + u * u, -2 * v),
+        )
+
+    def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        u, v = _uv(u1, u2)
+        two = np.full_like(u, 2.0)
+        return (
+            _stack(-2 * u, 2 * v, two),
+            _stack(2 * v, 2 * u, np.zeros_like(u)),
+            _stack(2 * u, -2 * v, -two),
+        )

@@ -1,0 +1,206 @@
+"""Numeric contour and hits of general parametric surfaces, checked against
+the analytic ellipsoid and an independent triangle-mesh ray cast."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import lgraph as lg
+from lgraph._own import CONTOUR, ON
+from lgraph.surfaces._numeric import contour, hits
+
+E = lg.Ellipsoid(3, 2, 1)
+PROJECTORS = [
+    lg.ParallelProjector(direction=(1, -1.3, 0.7)),
+    lg.CentralProjector(eye=(8, -6, 5)),
+]
+
+
+def _as_parametric(e):
+    return lg.ParametricSurface(
+        e.point,
+        (-np.pi / 2, np.pi / 2),
+        (0, 2 * np.pi),
+        periodic=(False, True),
+        poles=(True, False),
+    )
+
+
+PS = _as_parametric(E)
+
+
+@pytest.mark.parametrize(
+    "make, message",
+    [
+        (lambda: lg.Torus(1, 1), "r must be smaller than R"),
+        (lambda: lg.Torus(-1, 0.5), "R must be a positive finite number"),
+        (lambda: lg.DupinCyclide(2, 1.9, 3), "d must lie strictly between"),
+        (lambda: lg.DupinCyclide(1, 2, 0.5), "b must be smaller than a"),
+        (lambda: lg.MonkeySaddle(extent=0), "extent must be a positive"),
+        (lambda: lg.Helicoid(radius=float("nan")), "radius must be a positive"),
+        (lambda: lg.Catenoid(height=-2), "height must be a positive"),
+        (lambda: lg.Enneper(extent=None), "extent must be a positive"),
+        (lambda: lg.ParametricSurface(lambda u, v: u, (0, 1), (0, 1)), "shape"),
+        (lambda: lg.ParametricSurface(E.point, (0, 0), (0, 1)), "u1_range"),
+    ],
+)
+def test_constructors_validate(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_parametric_requires_callable():
+    with pytest.raises(TypeError, match="func must be callable"):
+        lg.ParametricSurface(3, (0, 1), (0, 1))
+
+
+@pytest.mark.parametrize(
+    "S",
+    [
+        lg.Torus(3, 1),
+        lg.DupinCyclide(),
+        lg.MonkeySaddle(),
+        lg.Helicoid(),
+        lg.Catenoid(),
+        lg.Enneper(),
+    ],
+)
+def test_analytic_derivatives_match_differences(S):
+    rng = np.random.default_rng(0)
+    d = S.domain
+    u1 = rng.uniform(*d.u1, 20)
+    u2 = rng.uniform(*d.u2, 20)
+    fd = lg.ParametricSurface(S.point, d.u1, d.u2)
+    for a, b in zip(S.derivatives(u1, u2), fd.derivatives(u1, u2)):
+        assert np.abs(a - b).max() < 1e-7 * (1 + np.abs(a).max())
+
+
+@pytest.mark.parametrize("proj", PROJECTORS)
+def test_contour_matches_ellipsoid(proj):
+    (batch,) = contour(PS, proj)
+    t = np.concatenate([np.linspace(a, b, 3000) for a, b in zip(batch.t0, batch.t1)])
+    idx = np.repeat(np.arange(len(batch)), 3000)
+    x, uv = batch.evaluate(idx, t)
+    # on the surface, and on the analytic contour: in y = x / axes the contour
+    # is the circle cut from the unit sphere by the (polar) plane
+    y = x / np.array([3.0, 2.0, 1.0])
+    assert np.abs(np.linalg.norm(y, axis=1) - 1).max() < 1e-12
+    if isinstance(proj, lg.CentralProjector):
+        n = proj.eye / np.array([3.0, 2.0, 1.0])
+        dist = np.abs(y @ n - 1) / np.linalg.norm(n)
+    else:
+        n = proj.frame[2] / np.array([3.0, 2.0, 1.0])
+        dist = np.abs(y @ n) / np.linalg.norm(n)
+    assert dist.max() < 1e-8
+    # and it covers the whole analytic contour
+    (ab,) = E.contour(proj)
+    xa, _ = ab.evaluate(np.zeros(2000, int), np.linspace(0, 2 * np.pi, 2000))
+    from scipy.spatial import cKDTree
+
+    gap = cKDTree(x).query(xa)[0].max()
+    assert gap < 0.02
+    assert np.allclose(PS.point(uv[:, 0], uv[:, 1]), x)
+
+
+@pytest.mark.parametrize("proj, n", [(PROJECTORS[0], 100_000), (PROJECTORS[1], 20_000)])
+def test_hits_match_ellipsoid(proj, n):
+    rng = np.random.default_rng(1)
+    u = np.column_stack([np.arcsin(rng.uniform(-1, 1, n)), rng.uniform(0, 2 * np.pi, n)])
+    P = E.point(u[:, 0], u[:, 1])
+    dirs, smax = proj.rays(P)
+    own = np.full(n, ON, np.int8)
+    assert np.array_equal(E.hits(P, dirs, smax, own), hits(PS, P, dirs, smax, own))
+    # points off the surface: a box around it
+    Q = rng.uniform(-4, 4, (5000, 3))
+    d2, s2 = proj.rays(Q)
+    assert np.array_equal(E.hits(Q, d2, s2), hits(PS, Q, d2, s2))
+
+
+def test_contour_points_do_not_hide_themselves():
+    proj = PROJECTORS[0]
+    (batch,) = contour(PS, proj)
+    x, _ = batch.evaluate(np.zeros(500, int), np.linspace(batch.t0[0], batch.t1[0], 500))
+    d, s = proj.rays(x)
+    own = np.full(len(x), CONTOUR, np.int8)
+    assert np.array_equal(E.hits(x, d, s, own), hits(PS, x, d, s, own))
+
+
+# ---------------------------------------------------------------------------
+# independent brute force: ray cast against fine triangulations
+# ---------------------------------------------------------------------------
+def _triangles(surface, transform, n=150):
+    d = surface.domain
+    u1 = np.linspace(*d.u1, n)
+    u2 = np.linspace(*d.u2, n)
+    P = surface.point(*np.meshgrid(u1, u2, indexing="ij"))
+    P = transform.apply(P.reshape(-1, 3)).reshape(n, n, 3)
+    a, b, c, e = P[:-1, :-1], P[1:, :-1], P[1:, 1:], P[:-1, 1:]
+    tri = np.concatenate([np.stack([a, b, c], -2), np.stack([a, c, e], -2)]).reshape(-1, 3, 3)
+    return tri
+
+
+def _ray_cast(tri, o, frame, smin):
+    """Any hit of the parallel rays o + s w (w = frame[2]), s > smin, with the
+    triangles: 2-D point-in-triangle tests in the image plane plus depth."""
+    from scipy.spatial import cKDTree
+
+    e1, e2, w = frame
+    T2 = np.stack([tri @ e1, tri @ e2], -1)  # (t, 3, 2)
+    Tz = tri @ w
+    P2 = np.stack([o @ e1, o @ e2], -1)
+    Pz = o @ w
+    cen = T2.mean(axis=1)
+    rad = np.linalg.norm(T2 - cen[:, None], axis=2).max()
+    pairs = cKDTree(cen).query_ball_point(P2, rad * 1.01)
+    r = np.repeat(np.arange(len(o)), [len(p) for p in pairs])
+    t = np.concatenate([np.asarray(p, int) for p in pairs])
+    A, B, C = T2[t, 0], T2[t, 1], T2[t, 2]
+    v0, v1, v2 = B - A, C - A, P2[r] - A
+    den = v0[:, 0] * v1[:, 1] - v1[:, 0] * v0[:, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        b1 = (v2[:, 0] * v1[:, 1] - v1[:, 0] * v2[:, 1]) / den
+        b2 = (v0[:, 0] * v2[:, 1] - v2[:, 0] * v0[:, 1]) / den
+    inside = (b1 >= 0) & (b2 >= 0) & (b1 + b2 <= 1)
+    z = Tz[t, 0] + b1 * (Tz[t, 1] - Tz[t, 0]) + b2 * (Tz[t, 2] - Tz[t, 0])
+    ok = inside & (z - Pz[r] > smin)
+    hit = np.zeros(len(o), bool)
+    hit[r[ok]] = True
+    return hit
+
+
+def test_mixed_scene_matches_brute_force():
+    torus = lg.Torus(2.0, 0.7)
+    other = lg.Helicoid(radius=1.2, c=0.25, turns=1.0)
+    ell = lg.Ellipsoid(1.0, 0.8, 1.4)
+    scene = lg.Scene()
+    nodes = [
+        (torus, lg.IDENTITY if hasattr(lg, "IDENTITY") else lg.translate(0, 0, 0)),
+        (other, lg.translate(0.5, -3.2, 0.3)),
+        (ell, lg.translate(2.6, 1.5, 0.4)),
+    ]
+    for s, tr in nodes:
+        scene.add(s, lg.ParameterLines(6, 8), transform=tr)
+    proj = lg.ParallelProjector(direction=(0.6, -1.0, 0.8))
+    drawing = scene.render(proj, hidden_lines=True, tolerance=2e-3)
+    tris = [_triangles(s, tr) for s, tr in nodes]
+    pts, vis, owner = [], [], []
+    for st in drawing.strokes:
+        m = len(st.xyz)
+        if m < 12:
+            continue
+        sel = slice(m // 5, m - m // 5, max(1, m // 25))  # away from transitions
+        pts.append(st.xyz[sel])
+        vis.append(np.full(len(st.xyz[sel]), st.visible))
+        owner.append(np.full(len(st.xyz[sel]), [s for s, _ in nodes].index(st.surface)))
+    P = np.concatenate(pts)
+    visible = np.concatenate(vis)
+    pick = np.random.default_rng(0).permutation(len(P))[:6000]
+    P, visible = P[pick], visible[pick]
+    hidden = np.zeros(len(P), bool)
+    for tri in tris:
+        hidden |= _ray_cast(tri, P, proj.frame, 0.02)
+    agree = hidden == ~visible
+    assert visible.any() and (~visible).any()
+    print("agreement", agree.mean(), len(P), visible.mean())
+    assert agree.mean() > 0.995, (agree.mean(), len(P))
