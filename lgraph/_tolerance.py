@@ -35,11 +35,13 @@ SECTION_POINTS = 20000
 #: origin is the origin's own surface, not an occluder.
 SELF_HIT_RTOL = 1e-9
 
-#: Relative step of central finite differences for first derivatives.
-FD_STEP_1 = 6e-6
+#: Relative step (of the parameter span) of the fourth-order central
+#: differences for first derivatives (errors near 1e-12).
+FD_STEP_1 = 1e-3
 
-#: Relative step of central finite differences for second derivatives.
-FD_STEP_2 = 1e-4
+#: Relative step of the fourth-order central differences for second
+#: derivatives (rounding and truncation errors both near 1e-10).
+FD_STEP_2 = 2e-3
 
 #: Largest number of curves a single family may request.
 MAX_CURVES = 100_000

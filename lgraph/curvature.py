@@ -120,34 +120,10 @@ def curvature_equation_angle(surface: Any, uv: np.ndarray, duv: np.ndarray) -> n
 UMBILIC_RTOL = 2e-3
 
 
-_W = np.array([1.0, -8.0, 8.0, -1.0]) / 12.0  # fourth-order first-derivative stencil
-_OFF = np.array([-2.0, -1.0, 1.0, 2.0])
-
-
 def smooth_second_derivatives(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
-    """``x11, x12, x22``: analytic when the class has them, else fourth-order
-    finite differences with steps ``2e-3`` of the spans (rounding and
-    truncation errors both near ``1e-11``), smooth enough for ODE solvers."""
-    from .surfaces._base import Surface
-
-    if type(surface).second_derivatives is not Surface.second_derivatives:
-        return surface.second_derivatives(u1, u2)
-    u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
-    d = surface.domain
-    h1, h2 = 2e-3 * d.span(0), 2e-3 * d.span(1)
-    f = surface.point
-    x0 = f(u1, u2)
-    w2 = (-1 / 12, 4 / 3, 4 / 3, -1 / 12)
-    x11 = -2.5 * x0
-    x22 = -2.5 * x0
-    for o, w in zip(_OFF, w2):
-        x11 = x11 + w * f(u1 + o * h1, u2)
-        x22 = x22 + w * f(u1, u2 + o * h2)
-    x12 = 0.0
-    for oa, wa in zip(_OFF, _W):
-        for ob, wb in zip(_OFF, _W):
-            x12 = x12 + (wa * wb) * f(u1 + oa * h1, u2 + ob * h2)
-    return x11 / (h1 * h1), x12 / (h1 * h2), x22 / (h2 * h2)
+    """``x11, x12, x22`` (analytic when the class has them; the base class's
+    fourth-order differences are smooth enough for ODE solvers)."""
+    return surface.second_derivatives(u1, u2)
 
 
 def principal_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np.ndarray, ...]:

@@ -19,7 +19,7 @@ import attrs
 from ._tolerance import CHORD_TOLERANCE
 from .curves import Curve, CurveOnSurface
 from .drawing import Drawing, Page, Style
-from .families import Contour, Family, ParameterLines
+from .families import FAMILIES, Contour, Family
 from .geometry.transforms import IDENTITY, Transform
 from .surfaces._base import Surface
 
@@ -105,8 +105,8 @@ class Scene:
     ) -> Node:
         """Add a surface or curve with the given line families.
 
-        A surface added with no family gets its default families
-        (:class:`ParameterLines`).  Every surface draws its contour unless
+        A surface added with no family gets its class's ``default_families``
+        (:class:`ParameterLines` for most).  Every surface draws its contour unless
         ``contour=False``; ``hides=False`` makes a surface transparent (its
         lines are drawn, it hides nothing).
         """
@@ -121,7 +121,7 @@ class Scene:
                     f"got {type(f).__name__}"
                 )
         if isinstance(item, Surface) and not families:
-            families = (ParameterLines(),)
+            families = tuple(FAMILIES[name]() for name in item.default_families)
         node = Node(item, tuple(families), transform, style, contour, hides)
         self._nodes.append(node)
         return node
