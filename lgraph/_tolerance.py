@@ -28,8 +28,9 @@ BISECTION_MAX_STEPS = 64
 #: Most sub-intervals per step when locating visibility flips (K-section).
 SECTIONS = 32
 
-#: Aim for about this many test points per K-section step over all flips.
-SECTION_POINTS = 20000
+#: Fixed cost of one K-section step, in units of one grouped quadric test of
+#: one point (measured: a step costs about as much as 2000 such tests).
+STEP_COST = 2000.0
 
 #: A ray hit closer than this (relative to the surface's size) to the ray's
 #: origin is the origin's own surface, not an occluder.

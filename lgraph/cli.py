@@ -99,9 +99,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
+    from .plugins import PluginError
+
     try:
         return int(args.func(args) or 0)
-    except (ValueError, OSError) as e:
+    except (ValueError, TypeError, OSError, NotImplementedError, PluginError) as e:
         print(f"lgraph {args.command}: error: {e}", file=sys.stderr)
         return 1
 

@@ -185,6 +185,10 @@ class _Visibility:
             else:
                 self.items.append((j, surf, inv, box))
         self._setup_grid(quads)
+        #: relative cost of testing one point (1: the grouped quadric test)
+        self.cost_per_point = 1.0 + sum(it[1].hit_cost for it in self.items)
+        #: fixed cost of one visibility test call
+        self.cost_per_call = tol.STEP_COST + sum(it[1].hit_call_cost for it in self.items)
 
     def _setup_grid(self, quads: list) -> None:
         self.nq = len(quads)
@@ -421,11 +425,17 @@ def _regula_falsi(all_s, flips, vis, projector) -> None:  # noqa: ANN001
 def _k_section(all_s, flips, vis, projector) -> None:  # noqa: ANN001
     """Remaining flips: each step splits every bracket into ``K`` parts at once
     (the exactness of bisection in ``1/log2(K)`` of the steps), keeping the
-    first sub-bracket whose ends differ; ``K`` shrinks as the flips grow."""
+    first sub-bracket whose ends differ.  ``K`` trades the fixed cost of a
+    step against the number and cost of the tests: large for a few flips on
+    cheap surfaces, 2 (bisection) for many flips on costly ones."""
     n_flips = sum(
         int((~_converged(all_s[k], fd["cid"], fd["lo"], fd["hi"])).sum()) for k, fd in flips.items()
     )
-    K = 2 ** int(np.clip(np.log2(tol.SECTION_POINTS / max(n_flips, 1)), 1, np.log2(tol.SECTIONS)))
+    # cost of a step: a fixed part plus the sub-points times the cost of a test;
+    # pick the K with the least cost per bit gained (deterministic: no timing)
+    ks = 2 ** np.arange(1, int(np.log2(tol.SECTIONS)) + 1)
+    per_bit = (vis.cost_per_call + n_flips * (ks - 1) * vis.cost_per_point) / np.log2(ks)
+    K = int(ks[np.argmin(per_bit)])
     frac = np.arange(1, K) / K
     for _ in range(tol.BISECTION_MAX_STEPS):
         work, evals = [], []

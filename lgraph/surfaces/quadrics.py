@@ -49,6 +49,9 @@ class Quadric(Surface):
     for unbounded quadrics, :meth:`in_patch` (which part is drawn and hides).
     """
 
+    hit_cost = 2.0
+    hit_call_cost = 300.0
+
     @property
     def coefficients(self) -> tuple[np.ndarray, np.ndarray, float]:  # pragma: no cover
         """``(A, b, d)`` of ``x^T A x + b . x + d = 0`` (A symmetric 3x3)."""

@@ -172,6 +172,9 @@ class _Ruled(Surface):
     ``d`` and their derivatives; ``z = d/|d|`` unless ``_unit`` is False.
     """
 
+    hit_cost = 17.0
+    hit_call_cost = 5000.0
+
     _unit = True
     #: "general", "A" (rulings at roots of A) or "B" (rulings at roots of B)
     _contour_kind = "general"

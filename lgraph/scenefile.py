@@ -1,0 +1,787 @@
+"""Scene files: a TOML description of a scene, rendered by ``lgraph render``.
+
+Nothing in a scene file is ever evaluated as Python: surfaces and families
+are looked up by registry name (:mod:`lgraph.plugins`), parameters must be
+plain numbers (a string where a number is expected is an error, whatever it
+contains), and every value is checked before anything is built.  The whole
+file is validated before :func:`load_scene_file` returns, so a partially
+valid file renders nothing.  Errors are :class:`SceneFileError` with one line
+naming the file, the line and the key::
+
+    scene.toml:9: object[0].params.a: expected a number, got a string '...'
+
+The format::
+
+    [projector]                  # parallel: direction = [x, y, z] or azimuth/elevation
+    kind = "central"             # central: eye (+ target) or azimuth/elevation/distance
+    eye = [9, -7, 6]
+    target = [0, 0, 0]
+
+    [page]                       # optional: width/height/margin in pt, or preset = "a4"
+    preset = "a4"
+    landscape = true
+
+    [render]                     # optional: keyword arguments of Scene.render
+    hidden_lines = true
+    tolerance = 1e-4
+    hidden_style = { color = "#808080", width = 0.3, dash = [2, 1.5] }
+
+    [save]                       # optional: keyword arguments of Drawing.save (e.g. dpi)
+    dpi = 200
+
+    [[object]]                   # one table per surface
+    surface = "ellipsoid"
+    params = { a = 3, b = 2, c = 1.3 }
+    families = [{ name = "lines_of_curvature", n1 = 14, n2 = 18 }, "contour"]
+    transform = [{ translate = [0, 0, 0] }, { rotate = { axis = "z", degrees = 30 } },
+                 { scale = 2 }]  # applied in the order listed
+    style = { color = "#000000", width = 0.5 }   # or per family: style.contour = {...}
+    contour = true               # draw the contour (default true)
+    hides = true                 # hide what lies behind (default true)
+
+TOML is read with :mod:`tomllib` (Python >= 3.11); on Python 3.10 the
+``tomli`` package, if installed, is used instead.
+
+>>> import tempfile, os
+>>> text = '''
+... [projector]
+... kind = "parallel"
+... azimuth = 30
+... elevation = 20
+... [[object]]
+... surface = "sphere"
+... params = { r = 1 }
+... families = [{ name = "parameter_lines", n1 = 4, n2 = 8 }]
+... '''
+>>> with tempfile.TemporaryDirectory() as tmp:
+...     path = os.path.join(tmp, "s.toml")
+...     with open(path, "w") as f:
+...         _ = f.write(text)
+...     scene, projector, options = load_scene_file(path)
+>>> len(scene), type(projector).__name__, options
+(1, 'ParallelProjector', {'render': {}, 'save': {}})
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+import numbers
+import os
+import re
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Any
+
+__all__ = ["load_scene_file", "parse_scene", "SceneFileError"]
+
+Key = tuple[str | int, ...]
+
+
+class SceneFileError(Exception):
+    """A scene file that cannot be rendered; the message is one line:
+    ``file:line: key: what is wrong``."""
+
+    def __init__(self, message: str, *, path: str = "", line: int | None = None, key: str = ""):
+        super().__init__(message)
+        self.path = path
+        self.line = line
+        self.key = key
+
+
+class _Invalid(Exception):
+    """Raised during validation; turned into SceneFileError with a location."""
+
+    def __init__(self, key: Key, message: str) -> None:
+        super().__init__(message)
+        self.key = key
+        self.message = message
+
+
+# -- locating keys in the file text ----------------------------------------------------
+class _Locator:
+    """Line numbers of keys in TOML text, including keys inside inline tables
+    and elements of arrays (``("object", 1, "families", 0, "n1") -> 12``).
+
+    A small lenient scanner: the text has already been parsed by tomllib, so
+    it only needs to follow the structure, not to check it.
+    """
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.n = len(text)
+        self.line_starts = [0] + [m.end() for m in re.finditer("\n", text)]
+        self.lines: dict[Key, int] = {}
+        self._aot: dict[tuple[str, ...], int] = {}
+        try:
+            self._scan()
+        except (IndexError, ValueError):  # pragma: no cover - best effort only
+            pass
+
+    def line_of(self, key: Key) -> int | None:
+        """The line of ``key``, or of its nearest enclosing key that was found."""
+        for k in range(len(key), 0, -1):
+            if key[:k] in self.lines:
+                return self.lines[key[:k]]
+        return None
+
+    # scanner -------------------------------------------------------------------
+    def _line(self, i: int) -> int:
+        return bisect.bisect_right(self.line_starts, i)
+
+    def _skip(self, i: int, newlines: bool = True) -> int:
+        t = self.text
+        while i < self.n:
+            c = t[i]
+            if c == "#":
+                j = t.find("\n", i)
+                i = self.n if j < 0 else j
+            elif c in " \t\r" or (newlines and c == "\n"):
+                i += 1
+            else:
+                break
+        return i
+
+    def _string(self, i: int) -> tuple[str, int]:
+        t = self.text
+        for q in ('"""', "'''"):
+            if t.startswith(q, i):
+                j = t.find(q, i + 3)
+                while q == '"""' and j > 0 and _escaped(t, j):
+                    j = t.find(q, j + 1)
+                j = self.n if j < 0 else j + 3
+                while j < self.n and t[j] == q[0]:
+                    j += 1
+                return t[i + 3 : j - 3], j
+        q = t[i]
+        j = i + 1
+        while j < self.n and t[j] != q and t[j] != "\n":
+            j += 2 if (q == '"' and t[j] == "\\") else 1
+        return t[i + 1 : j], j + 1
+
+    def _key(self, i: int) -> tuple[list[str], int]:
+        """A dotted key ending before ``=`` or ``]``."""
+        t = self.text
+        parts: list[str] = []
+        while i < self.n:
+            i = self._skip(i, newlines=False)
+            if t[i] in "\"'":
+                s, i = self._string(i)
+                parts.append(s)
+            else:
+                m = re.compile(r"[A-Za-z0-9_\-]+").match(t, i)
+                if not m:
+                    break
+                parts.append(m.group())
+                i = m.end()
+            i = self._skip(i, newlines=False)
+            if i < self.n and t[i] == ".":
+                i += 1
+                continue
+            break
+        return parts, i
+
+    def _resolve(self, names: list[str]) -> Key:
+        out: list[str | int] = []
+        for k, part in enumerate(names):
+            out.append(part)
+            prefix = tuple(names[: k + 1])
+            if prefix in self._aot:
+                out.append(self._aot[prefix])
+        return tuple(out)
+
+    def _scan(self) -> None:
+        t = self.text
+        table: Key = ()
+        i = self._skip(0)
+        while i < self.n:
+            start = i
+            if t.startswith("[[", i):
+                names, i = self._key(i + 2)
+                prefix = tuple(names)
+                self._aot[prefix] = self._aot.get(prefix, -1) + 1
+                for k in list(self._aot):
+                    if len(k) > len(prefix) and k[: len(prefix)] == prefix:
+                        del self._aot[k]
+                table = self._resolve(names)
+                self.lines.setdefault(table, self._line(start))
+                i = t.find("\n", i)
+                i = self.n if i < 0 else i
+            elif t[i] == "[":
+                names, i = self._key(i + 1)
+                table = self._resolve(names)
+                self.lines.setdefault(table, self._line(start))
+                i = t.find("\n", i)
+                i = self.n if i < 0 else i
+            else:
+                parts, i = self._key(i)
+                if not parts or i >= self.n or t[i] != "=":
+                    j = t.find("\n", i)  # not a key line: skip it
+                    i = self.n if j < 0 else j
+                else:
+                    key = table + tuple(parts)
+                    self._record(key, start)
+                    i = self._value(i + 1, key)
+            i = self._skip(i)
+
+    def _record(self, key: Key, i: int) -> None:
+        line = self._line(i)
+        for k in range(1, len(key) + 1):  # dotted keys also define their parents
+            self.lines.setdefault(key[:k], line)
+
+    def _value(self, i: int, key: Key) -> int:
+        t = self.text
+        i = self._skip(i, newlines=False)
+        if i >= self.n:
+            return i
+        c = t[i]
+        if c in "\"'":
+            return self._string(i)[1]
+        if c == "[":
+            i += 1
+            idx = 0
+            while True:
+                i = self._skip(i)
+                if i >= self.n or t[i] == "]":
+                    return i + 1
+                self.lines.setdefault(key + (idx,), self._line(i))
+                i = self._value(i, key + (idx,))
+                i = self._skip(i)
+                if i < self.n and t[i] == ",":
+                    i += 1
+                    idx += 1
+        if c == "{":
+            i += 1
+            while True:
+                i = self._skip(i)
+                if i >= self.n or t[i] == "}":
+                    return i + 1
+                start = i
+                parts, i = self._key(i)
+                if not parts or i >= self.n or t[i] != "=":
+                    return i + 1
+                self._record(key + tuple(parts), start)
+                i = self._value(i + 1, key + tuple(parts))
+                i = self._skip(i)
+                if i < self.n and t[i] == ",":
+                    i += 1
+        m = re.compile(r"[^,\]\}\n#]*").match(t, i)
+        return m.end() if m else i + 1
+
+
+def _escaped(text: str, j: int) -> bool:
+    k = j - 1
+    n = 0
+    while k >= 0 and text[k] == "\\":
+        n += 1
+        k -= 1
+    return n % 2 == 1
+
+
+def _key_text(key: Key) -> str:
+    out = ""
+    for part in key:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        else:
+            out += ("." if out else "") + part
+    return out
+
+
+def _show(value: Any) -> str:
+    """A short, single-line description of a value for messages."""
+    if isinstance(value, str):
+        r = repr(value if len(value) <= 40 else value[:37] + "...")
+        return f"a string {r}"
+    if isinstance(value, bool):
+        return f"a boolean ({str(value).lower()})"
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return "an array"
+    r = repr(value)
+    return r if len(r) <= 40 else r[:37] + "..."
+
+
+# -- typed getters ---------------------------------------------------------------
+def _is_number(v: Any) -> bool:
+    return isinstance(v, numbers.Real) and not isinstance(v, bool)
+
+
+def _number(key: Key, v: Any, *, positive: bool = False) -> float:
+    if not _is_number(v):
+        raise _Invalid(key, f"expected a number, got {_show(v)}")
+    if not math.isfinite(v):
+        raise _Invalid(key, f"expected a finite number, got {v!r}")
+    if positive and not v > 0:
+        raise _Invalid(key, f"expected a positive number, got {v!r}")
+    return v
+
+
+def _vector(key: Key, v: Any) -> list[float]:
+    if not isinstance(v, list) or len(v) != 3:
+        raise _Invalid(key, f"expected an array of 3 numbers, got {_show(v)}")
+    return [_number(key + (k,), x) for k, x in enumerate(v)]
+
+
+def _table(key: Key, v: Any) -> dict[str, Any]:
+    if not isinstance(v, dict):
+        raise _Invalid(key, f"expected a table, got {_show(v)}")
+    return v
+
+
+def _string(key: Key, v: Any, choices: tuple[str, ...] | None = None) -> str:
+    if not isinstance(v, str):
+        raise _Invalid(key, f"expected a string, got {_show(v)}")
+    if choices is not None and v not in choices:
+        raise _Invalid(key, f"expected one of {', '.join(map(repr, choices))}, got {v!r}")
+    return v
+
+
+def _boolean(key: Key, v: Any) -> bool:
+    if not isinstance(v, bool):
+        raise _Invalid(key, f"expected true or false, got {_show(v)}")
+    return v
+
+
+def _only(key: Key, table: Mapping[str, Any], allowed: tuple[str, ...]) -> None:
+    for k in table:
+        if k not in allowed:
+            where = f" in [{_key_text(key)}]" if key else ""
+            raise _Invalid(key + (k,), f"unknown key {k!r}{where}; allowed: {', '.join(allowed)}")
+
+
+def _required(key: Key, table: Mapping[str, Any], name: str) -> Any:
+    if name not in table:
+        where = _key_text(key) or "the file"
+        raise _Invalid(key, f"missing required key {name!r} in {where}")
+    return table[name]
+
+
+def _call(key: Key, what: str, func: Callable[..., Any], kwargs: dict[str, Any]) -> Any:
+    """Call a constructor; its ValueError/TypeError names the key it is about."""
+    from .plugins import PluginError
+
+    try:
+        return func(**kwargs)
+    except PluginError as exc:
+        first = str(exc).splitlines()[0].removeprefix("lgraph: ").removesuffix("; original error:")
+        cause = exc.__cause__
+        why = f" ({type(cause).__name__}: {cause})" if cause is not None else ""
+        raise _Invalid(key, f"{what}: {first}{why}; see 'lgraph plugins'") from None
+    except (ValueError, TypeError, NotImplementedError) as exc:
+        msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        m = re.match(r"^\s*[\w.]+: (\w+) must", msg)
+        sub = key + (m.group(1),) if m and m.group(1) in kwargs else key
+        raise _Invalid(sub, f"{what}: {msg}") from None
+
+
+# -- the schema ------------------------------------------------------------------------
+_TOP = ("projector", "object", "page", "render", "save")
+
+
+def parse_scene(data: Mapping[str, Any]) -> tuple[Any, Any, dict[str, Any]]:
+    """Build ``(scene, projector, options)`` from parsed TOML ``data``.
+
+    Raises ``_Invalid`` (with the offending key) on the first problem; nothing
+    is rendered here.
+    """
+    import lgraph as lg
+
+    _only((), data, _TOP)
+    projector = _projector(("projector",), _required((), data, "projector"))
+    objects = _required((), data, "object")
+    if not isinstance(objects, list) or not objects:
+        raise _Invalid(("object",), "expected one or more [[object]] tables")
+    scene = lg.Scene()
+    for k, obj in enumerate(objects):
+        item, families, kw = _object(("object", k), _table(("object", k), obj))
+        try:
+            scene.add(item, *families, **kw)
+        except (TypeError, ValueError) as exc:
+            raise _Invalid(("object", k), str(exc)) from None
+    render: dict[str, Any] = {}
+    if "render" in data:
+        render = _render(("render",), _table(("render",), data["render"]))
+    if "page" in data:
+        render["page"] = _page(("page",), _table(("page",), data["page"]))
+    save: dict[str, Any] = {}
+    if "save" in data:
+        save = _save(("save",), _table(("save",), data["save"]))
+    return scene, projector, {"render": render, "save": save}
+
+
+def _projector(key: Key, p: Any) -> Any:
+    import lgraph as lg
+
+    p = _table(key, p)
+    kind = _string(key + ("kind",), _required(key, p, "kind"), ("parallel", "central"))
+    if kind == "parallel":
+        _only(key, p, ("kind", "direction", "azimuth", "elevation", "up"))
+        if "direction" in p:
+            if "azimuth" in p or "elevation" in p:
+                raise _Invalid(key + ("azimuth",), "give direction or azimuth/elevation, not both")
+            kw: dict[str, Any] = {"direction": _vector(key + ("direction",), p["direction"])}
+            if "up" in p:
+                kw["up"] = _vector(key + ("up",), p["up"])
+            return _call(key, "projector", lg.ParallelProjector, kw)
+        if "azimuth" not in p and "elevation" not in p:
+            raise _Invalid(key, "a parallel projector needs direction or azimuth and elevation")
+        az = _number(key + ("azimuth",), _required(key, p, "azimuth"))
+        el = _number(key + ("elevation",), _required(key, p, "elevation"))
+        if "up" in p:
+            raise _Invalid(key + ("up",), "up goes with direction, not with azimuth/elevation")
+        if not -90 <= el <= 90:
+            raise _Invalid(key + ("elevation",), f"must lie in [-90, 90] degrees, got {el!r}")
+        return lg.ParallelProjector.from_angles(az, el)
+    _only(key, p, ("kind", "eye", "target", "up", "azimuth", "elevation", "distance"))
+    target = _vector(key + ("target",), p["target"]) if "target" in p else [0.0, 0.0, 0.0]
+    if "eye" in p:
+        for k in ("azimuth", "elevation", "distance"):
+            if k in p:
+                raise _Invalid(key + (k,), "give eye or azimuth/elevation/distance, not both")
+        kw = {"eye": _vector(key + ("eye",), p["eye"]), "target": target}
+        if "up" in p:
+            kw["up"] = _vector(key + ("up",), p["up"])
+        return _call(key, "projector", lg.CentralProjector, kw)
+    if not any(k in p for k in ("azimuth", "elevation", "distance")):
+        raise _Invalid(key, "a central projector needs eye or azimuth, elevation and distance")
+    az = _number(key + ("azimuth",), _required(key, p, "azimuth"))
+    el = _number(key + ("elevation",), _required(key, p, "elevation"))
+    dist = _number(key + ("distance",), _required(key, p, "distance"), positive=True)
+    if "up" in p:
+        raise _Invalid(key + ("up",), "up goes with eye, not with azimuth/elevation/distance")
+    if not -90 <= el <= 90:
+        raise _Invalid(key + ("elevation",), f"must lie in [-90, 90] degrees, got {el!r}")
+    return lg.CentralProjector.from_angles(az, el, dist, target=target)
+
+
+_OBJECT = ("surface", "params", "families", "transform", "style", "contour", "hides")
+
+
+def _object(key: Key, obj: dict[str, Any]) -> tuple[Any, list[Any], dict[str, Any]]:
+    from .plugins import get_surface
+
+    _only(key, obj, _OBJECT)
+    name = _string(key + ("surface",), _required(key, obj, "surface"))
+    try:
+        cls = get_surface(name)
+    except KeyError as exc:
+        raise _Invalid(key + ("surface",), str(exc.args[0])) from None
+    params = _table(key + ("params",), obj.get("params", {}))
+    kwargs = _params(key + ("params",), cls, name, params)
+    surface = _call(key + ("params",), f"surface {name!r}", cls, kwargs)
+    families = []
+    fams = obj.get("families", ["parameter_lines"])
+    if not isinstance(fams, list):
+        raise _Invalid(key + ("families",), f"expected an array of families, got {_show(fams)}")
+    for k, f in enumerate(fams):
+        families.append(_family(key + ("families", k), f, surface))
+    kw: dict[str, Any] = {}
+    if "transform" in obj:
+        kw["transform"] = _transform(key + ("transform",), obj["transform"])
+    if "style" in obj:
+        kw["style"] = _styles(key + ("style",), obj["style"])
+    for flag in ("contour", "hides"):
+        if flag in obj:
+            kw[flag] = _boolean(key + (flag,), obj[flag])
+    return surface, families, kw
+
+
+def _parameters(cls: Any) -> tuple[dict[str, str], set[str]]:
+    """Keyword parameters of a constructor -> their annotation text, and the required ones."""
+    import inspect
+
+    import attrs
+
+    if attrs.has(cls):
+        fields = [f for f in attrs.fields(cls) if f.init]
+        ann = {f.alias or f.name: str(f.type or "") for f in fields}
+        req = {f.alias or f.name for f in fields if f.default is attrs.NOTHING}
+        return ann, req
+    try:
+        sig = inspect.signature(cls)
+    except (TypeError, ValueError):
+        return {}, set()
+    ann, req = {}, set()
+    for p in sig.parameters.values():
+        if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+            continue
+        ann[p.name] = "" if p.annotation is p.empty else str(p.annotation)
+        if p.default is p.empty:
+            req.add(p.name)
+    return ann, req
+
+
+def _params(key: Key, cls: Any, what: str, params: dict[str, Any]) -> dict[str, Any]:
+    """Check keyword arguments: known names, numbers (or arrays of numbers);
+    strings only where the constructor declares a ``str`` parameter."""
+    ann, required = _parameters(cls)
+    known = ", ".join(ann) or "(none)"
+    for name in params:
+        if ann and name not in ann:
+            raise _Invalid(key + (name,), f"unknown parameter {name!r} of {what}; known: {known}")
+    for name in sorted(required):
+        if name not in params:
+            raise _Invalid(key, f"missing required parameter {name!r} of {what} ({known})")
+    return {n: _param_value(key + (n,), v, ann.get(n, "")) for n, v in params.items()}
+
+
+def _param_value(key: Key, v: Any, annotation: str) -> Any:
+    if isinstance(v, bool):
+        if "bool" in annotation:
+            return v
+        raise _Invalid(key, f"expected a number, got {_show(v)}")
+    if _is_number(v):
+        return v
+    if isinstance(v, str):
+        if re.search(r"\bstr\b|Literal", annotation):
+            return v
+        raise _Invalid(key, f"expected a number, got {_show(v)}")
+    if isinstance(v, list):
+        return tuple(_param_value(key + (k,), x, "") for k, x in enumerate(v))
+    raise _Invalid(key, f"expected a number or an array of numbers, got {_show(v)}")
+
+
+def _family(key: Key, f: Any, surface: Any) -> Any:
+    from .plugins import get_family
+
+    if isinstance(f, str):
+        f = {"name": f}
+        name_key = key
+    else:
+        f = _table(key, f)
+        name_key = key + ("name",)
+    name = _string(name_key, _required(key, f, "name"))
+    try:
+        cls = get_family(name)
+    except KeyError as exc:
+        raise _Invalid(name_key, str(exc.args[0])) from None
+    args = {k: v for k, v in f.items() if k != "name"}
+    kwargs = _params(key, cls, f"family {name!r}", args)
+    family = _call(key, f"family {name!r}", cls, kwargs)
+    try:  # catch families the surface cannot draw (no closed forms) before rendering
+        family.batches(surface, None)
+    except (NotImplementedError, AttributeError) as exc:
+        raise _Invalid(
+            name_key, f"family {name!r} cannot be drawn on this surface: {exc}"
+        ) from None
+    return family
+
+
+def _transform(key: Key, items: Any) -> Any:
+    import lgraph as lg
+
+    if isinstance(items, dict):
+        items = [items]
+    if not isinstance(items, list):
+        raise _Invalid(
+            key, f"expected an array of {{ translate | rotate | scale = ... }}, got {_show(items)}"
+        )
+    total = None
+    for k, step in enumerate(items):
+        sk = key + (k,)
+        step = _table(sk, step)
+        if len(step) != 1 or next(iter(step)) not in ("translate", "rotate", "scale"):
+            raise _Invalid(
+                sk,
+                "each transform step is one of { translate = [x, y, z] }, "
+                "{ rotate = { axis = ..., degrees = ... } }, { scale = s | [sx, sy, sz] }",
+            )
+        op, arg = next(iter(step.items()))
+        ak = sk + (op,)
+        if op == "translate":
+            t = lg.translate(*_vector(ak, arg))
+        elif op == "rotate":
+            arg = _table(ak, arg)
+            _only(ak, arg, ("axis", "degrees"))
+            axis = _required(ak, arg, "axis")
+            if isinstance(axis, str):
+                axis = _string(ak + ("axis",), axis, ("x", "y", "z"))
+            else:
+                axis = _vector(ak + ("axis",), axis)
+            deg = _number(ak + ("degrees",), _required(ak, arg, "degrees"))
+            t = _call(
+                ak,
+                "rotate",
+                lambda **kw: lg.rotate(kw["axis"], kw["degrees"]),
+                {"axis": axis, "degrees": deg},
+            )
+        else:
+            factors = [_number(ak, arg)] if _is_number(arg) else _vector(ak, arg)
+            if any(x == 0 for x in factors):
+                raise _Invalid(ak, f"scale factors must be non-zero, got {arg!r}")
+            t = lg.scale(*factors)
+        total = t if total is None else t @ total
+    return total
+
+
+_STYLE = ("color", "width", "dash")
+
+
+def _style(key: Key, s: Any) -> Any:
+    from .drawing import Style
+
+    s = _table(key, s)
+    _only(key, s, _STYLE)
+    kw: dict[str, Any] = {}
+    if "color" in s:
+        c = s["color"]
+        kw["color"] = (
+            _string(key + ("color",), c)
+            if not isinstance(c, list)
+            else tuple(_number(key + ("color", k), x) for k, x in enumerate(c))
+        )
+    if "width" in s:
+        kw["width"] = _number(key + ("width",), s["width"], positive=True)
+    if "dash" in s:
+        d = s["dash"]
+        if d is False:
+            kw["dash"] = None
+        elif isinstance(d, list):
+            kw["dash"] = tuple(
+                _number(key + ("dash", k), x, positive=True) for k, x in enumerate(d)
+            )
+        else:
+            raise _Invalid(
+                key + ("dash",), f"expected an array of lengths in pt or false, got {_show(d)}"
+            )
+    return _call(key, "style", Style, kw)
+
+
+def _styles(key: Key, s: Any) -> Any:
+    s = _table(key, s)
+    if s and all(isinstance(v, dict) for v in s.values()):  # per family
+        return {fam: _style(key + (fam,), v) for fam, v in s.items()}
+    return _style(key, s)
+
+
+def _render(key: Key, r: dict[str, Any]) -> dict[str, Any]:
+    _only(key, r, ("hidden_lines", "tolerance", "hidden_style"))
+    out: dict[str, Any] = {}
+    if "hidden_lines" in r:
+        out["hidden_lines"] = _boolean(key + ("hidden_lines",), r["hidden_lines"])
+    if "tolerance" in r:
+        tol = _number(key + ("tolerance",), r["tolerance"], positive=True)
+        if tol >= 0.1:
+            raise _Invalid(
+                key + ("tolerance",), f"expected a small fraction like 1e-4, got {tol!r}"
+            )
+        out["tolerance"] = tol
+    if "hidden_style" in r:
+        out["hidden_style"] = _style(key + ("hidden_style",), r["hidden_style"])
+    return out
+
+
+def _page(key: Key, p: dict[str, Any]) -> Any:
+    from .drawing import Page
+
+    _only(key, p, ("preset", "landscape", "width", "height", "margin", "extent"))
+    if "preset" in p:
+        preset = _string(key + ("preset",), p["preset"], ("a4", "a5", "letter"))
+        for k in ("width", "height", "extent"):
+            if k in p:
+                raise _Invalid(key + (k,), "give preset or width/height, not both")
+        landscape = _boolean(key + ("landscape",), p.get("landscape", False))
+        w, h = {"a4": (595.2756, 841.8898), "a5": (419.5276, 595.2756), "letter": (612.0, 792.0)}[
+            preset
+        ]
+        if landscape:
+            w, h = h, w
+        margin = _number(key + ("margin",), p.get("margin", 36.0))
+        return _call(key, "page", Page, {"width": w, "height": h, "margin": margin})
+    if "landscape" in p:
+        raise _Invalid(key + ("landscape",), "landscape goes with preset")
+    kw = {k: _number(key + (k,), p[k]) for k in ("width", "height", "margin", "extent") if k in p}
+    if ("width" in kw) != ("height" in kw):
+        missing = "height" if "width" in kw else "width"
+        raise _Invalid(key, f"missing required key {missing!r} in page (give both or neither)")
+    return _call(key, "page", Page, kw)
+
+
+#: options of Drawing.save known to the built-in backends, with their checks
+_SAVE: dict[str, Callable[[Key, Any], Any]] = {
+    "dpi": lambda k, v: _number(k, v, positive=True),
+    "supersample": lambda k, v: _int(k, v, 1, 16),
+    "precision": lambda k, v: _int(k, v, 0, 6),
+    "compress": _boolean,
+    "title": lambda k, v: _string(k, v),
+}
+
+
+def _int(key: Key, v: Any, lo: int, hi: int) -> int:
+    if not (isinstance(v, int) and not isinstance(v, bool) and lo <= v <= hi):
+        raise _Invalid(key, f"expected an integer from {lo} to {hi}, got {_show(v)}")
+    return v
+
+
+def _save(key: Key, s: dict[str, Any]) -> dict[str, Any]:
+    _only(key, s, tuple(_SAVE))
+    return {k: _SAVE[k](key + (k,), v) for k, v in s.items()}
+
+
+# -- entry point -----------------------------------------------------------------------
+def _toml() -> Any:
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10: the tomli package, if installed
+        try:
+            import tomli as tomllib  # type: ignore[no-redef]
+        except ModuleNotFoundError:
+            raise SceneFileError(
+                "reading scene files needs Python >= 3.11 or the 'tomli' package"
+            ) from None
+    return tomllib
+
+
+def load_scene_file(path: str | os.PathLike[str]) -> tuple[Any, Any, dict[str, Any]]:
+    """Read and validate a TOML scene file.
+
+    Returns
+    -------
+    scene : Scene
+    projector : Projector
+    options : dict
+        ``{"render": kwargs of Scene.render (hidden_lines, tolerance, page,
+        hidden_style), "save": kwargs of Drawing.save (dpi, ...)}``.
+
+    Raises
+    ------
+    SceneFileError
+        With a one-line message ``file:line: key: problem`` for the first
+        problem found.  Nothing is built for a file with any problem.
+    """
+    tomllib = _toml()
+    shown = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise SceneFileError(f"{shown}: cannot read the scene file: {reason}", path=shown) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc)
+        m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
+        line = int(m.group(1)) if m else None
+        reason = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg)
+        near = ""
+        if line is not None:
+            src = text.splitlines()[line - 1].strip() if line <= len(text.splitlines()) else ""
+            km = re.match(r"\[*\s*([\w.\-\"']+)", src)
+            near = f"{km.group(1)}: " if km else ""
+            src_short = src if len(src) <= 50 else src[:47] + "..."
+            reason = f"{reason} in {src_short!r}" if src else reason
+        loc = f"{shown}:{line}" if line else shown
+        raise SceneFileError(
+            f"{loc}: {near}invalid TOML: {reason}", path=shown, line=line, key=near.rstrip(": ")
+        ) from None
+    try:
+        return parse_scene(data)
+    except _Invalid as exc:
+        line = _Locator(text).line_of(exc.key)
+        key = _key_text(exc.key)
+        loc = f"{shown}:{line}" if line else shown
+        where = f"{loc}: {key}: " if key else f"{loc}: "
+        message = " ".join(exc.message.split())  # one line, always
+        raise SceneFileError(where + message, path=shown, line=line, key=key) from None
