@@ -107,20 +107,22 @@ def _initial(
     return _Samples(entry, batch, node, transform, cid, t, xyz, uv, xy)
 
 
-def _merge(s: _Samples, cid, t, xyz, uv, xy, hidden=None) -> np.ndarray:  # noqa: ANN001
-    """Insert new samples into ``s`` (keeping the order); returns a new-point mask."""
-    n_old = len(s.t)
-    s.cid = np.concatenate([s.cid, cid])
-    s.t = np.concatenate([s.t, t])
-    order = np.lexsort((s.t, s.cid))
-    s.cid, s.t = s.cid[order], s.t[order]
-    s.xyz = np.concatenate([s.xyz, xyz])[order]
-    s.xy = np.concatenate([s.xy, xy])[order]
+def _merge(s: _Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np.ndarray:  # noqa: ANN001
+    """Insert new samples into ``s``, each right after sample ``after[i]``
+    (``after`` sorted; equal entries keep their given order).  Returns a mask of
+    the new points in the merged arrays."""
+    pos = np.asarray(after) + 1
+    s.cid = np.insert(s.cid, pos, cid)
+    s.t = np.insert(s.t, pos, t)
+    s.xyz = np.insert(s.xyz, pos, xyz, axis=0)
+    s.xy = np.insert(s.xy, pos, xy, axis=0)
     if s.uv is not None:
-        s.uv = np.concatenate([s.uv, uv])[order]
+        s.uv = np.insert(s.uv, pos, uv, axis=0)
     if hidden is not None:
-        s.hidden = np.concatenate([s.hidden, hidden])[order]
-    return order >= n_old
+        s.hidden = np.insert(s.hidden, pos, hidden)
+    new = np.zeros(len(s.t), dtype=bool)
+    new[pos + np.arange(len(pos))] = True
+    return new
 
 
 def _refine(s: _Samples, projector: Projector, abs_tol: float) -> None:
@@ -140,7 +142,13 @@ def _refine(s: _Samples, projector: Projector, abs_tol: float) -> None:
         if not split.any():
             return
         new = _merge(
-            s, cm[split], tm[split], xyz[split], None if uv is None else uv[split], xy[split]
+            s,
+            idx[split],
+            cm[split],
+            tm[split],
+            xyz[split],
+            None if uv is None else uv[split],
+            xy[split],
         )
         need = new[:-1] | new[1:]
         if len(s.t) > tol.MAX_POINTS:
@@ -476,10 +484,12 @@ def _locate_flips(all_s: list[_Samples], vis: _Visibility, projector: Projector)
     _k_section(all_s, flips, vis, projector)
     for k, fd in flips.items():
         s = all_s[k]
-        t = np.concatenate([fd["lo"], fd["hi"]])
-        c = np.concatenate([fd["cid"], fd["cid"]])
+        # both ends of each bracket, in order, right after the flip's first sample
+        t = np.column_stack([fd["lo"], fd["hi"]]).ravel()
+        c = np.repeat(fd["cid"], 2)
         xyz, uv, xy = _evaluate(s.batch, s.transform, projector, c, t)
-        _merge(s, c, t, xyz, uv, xy, np.concatenate([fd["hlo"], ~fd["hlo"]]))
+        hidden = np.column_stack([fd["hlo"], ~fd["hlo"]]).ravel()
+        _merge(s, np.repeat(fd["f"], 2), c, t, xyz, uv, xy, hidden)
 
 
 def _strokes(
