@@ -216,6 +216,9 @@ class Drawing:
         if not pts:
             return (0.0, 0.0, 1.0, 1.0)
         allp = np.concatenate(pts)
+        allp = allp[np.isfinite(allp).all(axis=1)]  # NaN points break a stroke
+        if not len(allp):
+            return (0.0, 0.0, 1.0, 1.0)
         lo, hi = allp.min(axis=0), allp.max(axis=0)
         return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
 

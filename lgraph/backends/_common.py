@@ -1,0 +1,132 @@
+"""Helpers shared by the built-in backends: options, colours, numbers, point runs.
+
+>>> hex_color((1.0, 0.5, 0.0))
+'#ff8000'
+>>> fmt_num(0.30000000000000004), fmt_num(500.0), fmt_num(-0.0)
+('0.3', '500', '0')
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "check_options",
+    "check_precision",
+    "background_rgb",
+    "hex_color",
+    "fmt_num",
+    "format_points",
+    "finite_runs",
+    "page_runs",
+    "positive_finite",
+]
+
+
+def check_options(writer: str, options: Mapping[str, Any], known: tuple[str, ...]) -> None:
+    """Raise TypeError naming the first option ``writer`` does not accept.
+
+    >>> check_options("write_svg", {"dpi": 72}, ("precision",))
+    Traceback (most recent call last):
+    ...
+    TypeError: write_svg: unknown option 'dpi'; known options: precision
+    """
+    if options:
+        name = next(iter(options))
+        known_list = ", ".join(known) if known else "(none)"
+        raise TypeError(f"{writer}: unknown option {name!r}; known options: {known_list}")
+
+
+def check_precision(writer: str, precision: Any) -> int:
+    """Validate the number of decimals used for coordinates (an int in 0..6)."""
+    if (
+        not isinstance(precision, numbers.Integral)
+        or isinstance(precision, bool)
+        or not 0 <= precision <= 6
+    ):
+        raise ValueError(f"{writer}: precision must be an integer in 0..6, got {precision!r}")
+    return int(precision)
+
+
+def background_rgb(drawing: Any) -> tuple[float, float, float] | None:
+    """The drawing's background as an RGB triple in [0, 1], or None (transparent)."""
+    bg = getattr(drawing, "background", None)
+    if bg is None:
+        return None
+    from ..drawing import _color
+
+    return _color(bg)
+
+
+def hex_color(rgb: tuple[float, float, float]) -> str:
+    """``#rrggbb`` for an RGB triple in [0, 1]."""
+    r, g, b = (min(255, max(0, round(c * 255))) for c in rgb)
+    return f"#{r:02x}{g:02x}{b:02x}"
+
+
+def fmt_num(x: float, digits: int = 4) -> str:
+    """A short decimal for a scalar attribute (width, dash, page size).
+
+    Rounds to ``digits`` decimals and drops trailing zeros; never uses an
+    exponent (neither PDF nor SVG attributes want one).
+    """
+    s = f"{float(x):.{digits}f}".rstrip("0").rstrip(".")
+    return "0" if s in ("", "-0") else s
+
+
+def format_points(points: np.ndarray, template: str, precision: int) -> str:
+    """Format all points in one pass with ``template`` repeated per point.
+
+    ``template`` contains two ``{}`` placeholders that become ``%.<precision>f``.
+
+    >>> format_points(np.array([[1.0, 2.0], [3.25, 4.0]]), "{} {} l\\n", 1)
+    '1.0 2.0 l\\n3.2 4.0 l\\n'
+    """
+    f = f"%.{precision}f"
+    pts = np.asarray(points, dtype=float)
+    return (template.format(f, f) * len(pts)) % tuple(pts.ravel().tolist())
+
+
+def finite_runs(points: np.ndarray) -> list[np.ndarray]:
+    """Split a polyline at non-finite points; keep the runs of two or more points.
+
+    >>> p = np.array([[0, 0], [1, 0], [np.nan, 0], [2, 0], [3, 1], [4, 1]], float)
+    >>> [len(r) for r in finite_runs(p)]
+    [2, 3]
+    """
+    pts = np.asarray(points, dtype=float)
+    ok = np.isfinite(pts).all(axis=1)
+    if ok.all():
+        return [pts] if len(pts) >= 2 else []
+    edges = np.diff(np.concatenate([[False], ok, [False]]).astype(np.int8))
+    starts = np.flatnonzero(edges == 1)
+    stops = np.flatnonzero(edges == -1)
+    return [pts[a:b] for a, b in zip(starts, stops) if b - a >= 2]
+
+
+def page_runs(drawing: Any) -> Iterator[tuple[np.ndarray, Any]]:
+    """Yield ``(points, stroke)`` in page points for every finite run of every stroke.
+
+    A stroke whose points are all finite gives exactly one run; NaN or inf
+    points (breaks) split it.
+    """
+    for pts, stroke in drawing.page_strokes():
+        for run in finite_runs(pts):
+            yield run, stroke
+
+
+def positive_finite(writer: str, name: str, value: Any) -> float:
+    """Validate a positive finite real number."""
+    if not (
+        isinstance(value, numbers.Real)
+        and not isinstance(value, bool)
+        and math.isfinite(value)
+        and value > 0
+    ):
+        raise ValueError(f"{writer}: {name} must be a positive finite number, got {value!r}")
+    return float(value)

@@ -1,0 +1,209 @@
+"""PNG backend (pillow): anti-aliased raster by supersampling.
+
+The drawing is rendered at ``supersample`` times the output resolution and
+box-reduced (``Image.reduce``), which anti-aliases without the ringing of a
+Lanczos filter.  Round caps and joins are drawn as discs: pillow's own
+``joint="curve"`` loops over every vertex in Python and gives no caps, so
+discs go only where they show (stroke ends, dash ends and vertices whose
+turning angle opens a visible gap), found with one vectorized test.
+
+>>> import numpy as np, tempfile, os
+>>> from PIL import Image
+>>> from lgraph.drawing import Drawing, Page, Stroke
+>>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)))
+>>> d = Drawing(strokes=(s,), page=Page(margin=0, extent=100))
+>>> with tempfile.TemporaryDirectory() as tmp:
+...     path = os.path.join(tmp, "a.png")
+...     write_png(d, path, dpi=144)
+...     Image.open(path).size
+(200, 100)
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import os
+from typing import Any
+
+import numpy as np
+
+from ..drawing import dash_polyline
+from ._common import background_rgb, check_options, page_runs, positive_finite
+
+__all__ = ["write_png", "MAX_SIDE"]
+
+#: Largest allowed output image side in pixels.
+MAX_SIDE = 20000
+
+#: Largest supersampled canvas in pixels; ``supersample`` is lowered to fit.
+MAX_SUPERSAMPLED_PIXELS = 2**28
+
+#: A round join is drawn where the gap it fills would exceed this (in
+#: supersampled pixels).
+_JOIN_GAP_PX = 0.25
+
+
+def _image_size(pw: float, ph: float, dpi: Any, size: Any) -> tuple[int, int, float, float, float]:
+    """Pixel size, scale (px per pt) and offset for the page ``pw`` x ``ph`` pt."""
+    if size is None:
+        dpi = positive_finite("write_png", "dpi", dpi)
+        scale = dpi / 72.0
+        w, h = max(1, round(pw * scale)), max(1, round(ph * scale))
+        if max(w, h) > MAX_SIDE:
+            raise ValueError(
+                f"write_png: dpi={dpi:g} gives a {w} x {h} px image; the limit is "
+                f"{MAX_SIDE} px per side (lower dpi or give size)"
+            )
+        # Map the page exactly onto the rounded pixel grid.
+        return w, h, w / pw, h / ph, 0.0
+    if isinstance(size, numbers.Integral) and not isinstance(size, bool):
+        n = _check_side(size, "size")
+        scale = n / max(pw, ph)
+        w, h = max(1, round(pw * scale)), max(1, round(ph * scale))
+        return w, h, w / pw, h / ph, 0.0
+    try:
+        w, h = size
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"write_png: size must be an int (longer side in px) or (width, height) "
+            f"in px, got {size!r}"
+        ) from None
+    w, h = _check_side(w, "size[0]"), _check_side(h, "size[1]")
+    # Keep the aspect ratio: fit the page inside (w, h) and centre it.
+    scale = min(w / pw, h / ph)
+    return w, h, scale, scale, 1.0
+
+
+def _check_side(value: Any, name: str) -> int:
+    if not isinstance(value, numbers.Integral) or isinstance(value, bool) or value < 1:
+        raise ValueError(f"write_png: {name} must be a positive integer, got {value!r}")
+    if value > MAX_SIDE:
+        raise ValueError(f"write_png: {name} = {value} px exceeds the limit of {MAX_SIDE} px")
+    return int(value)
+
+
+def _disc_vertices(px: np.ndarray, radius: float) -> np.ndarray:
+    """Indices of the vertices of ``px`` that need a disc for a round cap/join."""
+    n = len(px)
+    ends = np.array([0, n - 1])
+    if n < 3:
+        return ends
+    d1 = px[1:-1] - px[:-2]
+    d2 = px[2:] - px[1:-1]
+    l1 = np.hypot(d1[:, 0], d1[:, 1])
+    l2 = np.hypot(d2[:, 0], d2[:, 1])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cos_t = np.einsum("ij,ij->i", d1, d2) / (l1 * l2)
+    cos_t = np.where(np.isfinite(cos_t), np.clip(cos_t, -1.0, 1.0), 1.0)
+    # Gap between a butt-joined corner and the round join: r (1 - cos(theta/2)).
+    gap = radius * (1.0 - np.sqrt((1.0 + cos_t) / 2.0))
+    inner = np.flatnonzero(gap > _JOIN_GAP_PX) + 1
+    return np.concatenate([ends, inner])
+
+
+def _draw_polyline(draw: Any, px: np.ndarray, ink: tuple[int, ...], lw: int) -> None:
+    """Draw one polyline in supersampled pixel coordinates with round caps/joins."""
+    draw.line(px.ravel().tolist(), fill=ink, width=lw)
+    if lw < 3:
+        return
+    r = (lw - 1) / 2.0
+    for x, y in px[_disc_vertices(px, lw / 2.0)].tolist():
+        draw.ellipse((x - r, y - r, x + r, y + r), fill=ink)
+
+
+def write_png(
+    drawing: Any,
+    path: str | os.PathLike[str],
+    *,
+    dpi: float = 150,
+    size: int | tuple[int, int] | None = None,
+    supersample: int = 3,
+    **options: Any,
+) -> None:
+    """Write ``drawing`` as an anti-aliased PNG.
+
+    Parameters
+    ----------
+    drawing : Drawing
+        The display list.
+    path : path-like
+        File to write (whatever its suffix).
+    dpi : float, default 150
+        Pixels per inch of the page (a page point is 1/72 inch).
+    size : int or (int, int), optional
+        Overrides ``dpi``: an int is the longer side in pixels; ``(width,
+        height)`` is the exact image size, with the page fitted inside and
+        centred (aspect ratio kept).
+    supersample : int, default 3
+        Render at this many times the resolution, then box-reduce.  Lowered
+        automatically when the supersampled canvas would exceed
+        ``MAX_SUPERSAMPLED_PIXELS``.
+
+    Notes
+    -----
+    Line widths scale with the resolution (at least 1 supersampled pixel).
+    Dashes are split with :func:`lgraph.drawing.dash_polyline`.  The background
+    is ``drawing.background`` (an RGB image); None gives a transparent RGBA
+    image.  The effective dpi is written into the PNG metadata.
+
+    Raises
+    ------
+    TypeError
+        For an option this writer does not know.
+    ValueError
+        For a bad ``dpi``, ``size`` or ``supersample``, or an image larger than
+        ``MAX_SIDE`` pixels per side.
+    """
+    check_options("write_png", options, ("dpi", "size", "supersample"))
+    if (
+        not isinstance(supersample, numbers.Integral)
+        or isinstance(supersample, bool)
+        or not 1 <= supersample <= 8
+    ):
+        raise ValueError(f"write_png: supersample must be an integer in 1..8, got {supersample!r}")
+
+    from PIL import Image, ImageDraw
+    from PIL.PngImagePlugin import PngInfo
+
+    pw, ph = drawing.page_size()
+    w, h, sx, sy, centre = _image_size(pw, ph, dpi, size)
+    ss = int(supersample)
+    ss = max(1, min(ss, math.isqrt(MAX_SUPERSAMPLED_PIXELS // (w * h))))
+
+    bg = background_rgb(drawing)
+    if bg is None:
+        mode, fill = "RGBA", (0, 0, 0, 0)
+    else:
+        mode, fill = "RGB", tuple(round(c * 255) for c in bg)
+    img = Image.new(mode, (w * ss, h * ss), fill)
+    draw = ImageDraw.Draw(img)
+
+    # Page pt (y up) -> supersampled pixel coordinates (y down, pixel centres
+    # at integer + 0.5 in continuous coordinates).
+    ox = centre * (w - pw * sx) / 2.0
+    oy = centre * (h - ph * sy) / 2.0
+    mat = np.array([[sx * ss, 0.0], [0.0, -sy * ss]])
+    off = np.array([ox * ss - 0.5, (oy + ph * sy) * ss - 0.5])
+    unit = math.sqrt(sx * sy) * ss  # supersampled px per pt for widths and dashes
+
+    for pts, stroke in page_runs(drawing):
+        style = stroke.style
+        ink = tuple(round(c * 255) for c in style.color)
+        if mode == "RGBA":
+            ink = (*ink, 255)
+        lw = max(1, round(style.width * unit))
+        px = pts @ mat + off
+        if style.dash:
+            pattern = tuple(x * unit for x in style.dash)
+            for piece in dash_polyline(px, pattern):
+                _draw_polyline(draw, piece, ink, lw)
+        else:
+            _draw_polyline(draw, px, ink, lw)
+
+    if ss > 1:
+        img = img.reduce(ss)
+    eff_dpi = 72.0 * math.sqrt(sx * sy)
+    info = PngInfo()
+    info.add_text("Software", "lgraph")
+    img.save(path, format="PNG", dpi=(eff_dpi, eff_dpi), pnginfo=info)
