@@ -14,8 +14,11 @@ CHORD_TOLERANCE = 1e-4
 #: Samples per curve before adaptive refinement starts.
 INITIAL_SAMPLES = 33
 
-#: Maximum number of refinement passes (each may halve every segment).
+#: Maximum number of refinement passes.
 MAX_REFINE_PASSES = 18
+
+#: A chord is split into at most this many parts in one refinement pass.
+MAX_SPLIT = 64
 
 #: Bisection stops when the parameter bracket is this small relative to the
 #: curve's parameter span (four orders of magnitude above double precision;

@@ -126,6 +126,13 @@ def _merge(s: _Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> 
 
 
 def _refine(s: _Samples, projector: Projector, abs_tol: float) -> None:
+    """Refine until every chord's midpoint is within ``abs_tol`` of the curve.
+
+    A chord whose midpoint deviates by ``dev`` is split into
+    ``m = ceil(sqrt(dev / abs_tol))`` equal parts at once (the deviation of a
+    smooth curve shrinks with the square of the chord), so a pass or two
+    usually suffices; the new chords are tested again.
+    """
     span = s.batch.t1 - s.batch.t0
     need = np.ones(len(s.t) - 1, dtype=bool)
     for _ in range(tol.MAX_REFINE_PASSES):
@@ -135,21 +142,22 @@ def _refine(s: _Samples, projector: Projector, abs_tol: float) -> None:
         if not len(idx):
             return
         tm = 0.5 * (s.t[idx] + s.t[idx + 1])
-        cm = s.cid[idx]
-        xyz, uv, xy = _evaluate(s.batch, s.transform, projector, cm, tm)
+        _, _, xy = _evaluate(s.batch, s.transform, projector, s.cid[idx], tm)
         dev = _seg_distance(xy, s.xy[idx], s.xy[idx + 1])
         split = ~(dev <= abs_tol)  # also splits where dev is NaN
         if not split.any():
             return
-        new = _merge(
-            s,
-            idx[split],
-            cm[split],
-            tm[split],
-            xyz[split],
-            None if uv is None else uv[split],
-            xy[split],
-        )
+        idx, dev = idx[split], dev[split]
+        with np.errstate(invalid="ignore"):
+            m = np.ceil(1.05 * np.sqrt(dev / abs_tol))
+        m = np.clip(np.nan_to_num(m, nan=2.0), 2, tol.MAX_SPLIT).astype(np.int64)
+        after = np.repeat(idx, m - 1)
+        j = np.arange(len(after)) - np.repeat(np.cumsum(m - 1) - (m - 1), m - 1) + 1
+        frac = j / np.repeat(m, m - 1)
+        t = s.t[after] + frac * (s.t[after + 1] - s.t[after])
+        c = s.cid[after]
+        xyz, uv, xy = _evaluate(s.batch, s.transform, projector, c, t)
+        new = _merge(s, after, c, t, xyz, uv, xy)
         need = new[:-1] | new[1:]
         if len(s.t) > tol.MAX_POINTS:
             raise ValueError(
