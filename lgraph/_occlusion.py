@@ -1,0 +1,176 @@
+"""Which points are hidden: every sample against every surface of the scene."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from . import _tolerance as tol
+from .projectors import CentralProjector, Projector
+from .surfaces._base import CONTOUR, OFF
+from .surfaces._quadric_ray import quadric_coefficients_world, quadric_ray_hits
+from .surfaces.quadrics import Quadric
+
+if TYPE_CHECKING:
+    from .scene import Node
+
+__all__ = ["Occlusion"]
+
+
+class Occlusion:
+    """Tests world points against every hiding surface of the scene.
+
+    Closed quadrics (ellipsoids, spheres, ...) are tested all at once: their
+    coefficients are moved to world coordinates and gathered per (point,
+    quadric) pair found by a uniform grid over their projected bounding boxes,
+    so the cost does not grow with the number of nodes.  Every other surface
+    is asked through its own ``hits`` for the points inside its box.
+    """
+
+    def __init__(self, nodes: tuple[Node, ...], projector: Projector) -> None:
+        self.projector = projector
+        self.items = []  # (node index, surface, inverse transform, box) asked one by one
+        quads = []  # (node index, box, A_w, b_w, d_w, eps) tested together
+        for j, node in enumerate(nodes):
+            surf = node.surface
+            if surf is None or not node.hides:
+                continue
+            inv = node.transform.inverse()
+            lo, hi = surf.bounds()
+            corners = np.array(
+                [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+            )
+            wc = node.transform.apply(corners)
+            box = None
+            if not isinstance(projector, CentralProjector) or np.all(projector.depth(wc) > 0):
+                pc = projector.project(wc)
+                box = (pc.min(axis=0), pc.max(axis=0))
+            if isinstance(surf, Quadric) and surf.closed and box is not None:
+                A, b, d = quadric_coefficients_world(*surf.coefficients, inv.matrix, inv.offset)
+                size = float(np.linalg.norm(wc.max(axis=0) - wc.min(axis=0)))
+                quads.append((j, box, A, b, d, tol.SELF_HIT_RTOL * size))
+            else:
+                self.items.append((j, surf, inv, box))
+        self._setup_grid(quads)
+        #: relative cost of testing one point (1: the grouped quadric test)
+        self.cost_per_point = 1.0 + sum(it[1].hit_cost for it in self.items)
+        #: fixed cost of one visibility test call
+        self.cost_per_call = tol.STEP_COST + sum(it[1].hit_call_cost for it in self.items)
+
+    def _setup_grid(self, quads: list) -> None:
+        self.nq = len(quads)
+        if not quads:
+            return
+        self.q_node = np.array([q[0] for q in quads])
+        self.q_box = np.array([[*q[1][0], *q[1][1]] for q in quads])  # x0 y0 x1 y1
+        self.q_A = np.array([q[2] for q in quads])
+        self.q_b = np.array([q[3] for q in quads])
+        self.q_d = np.array([q[4] for q in quads])
+        self.q_eps = np.array([q[5] for q in quads])
+        # ellipsoids (A positive definite): a continuous hiding margin exists
+        self.q_pd = np.all(np.linalg.eigvalsh(self.q_A) > 0, axis=1)
+        pad = 1e-9 * (np.ptp(self.q_box[:, [0, 2]]) + np.ptp(self.q_box[:, [1, 3]]) + 1.0)
+        self.q_box += np.array([-pad, -pad, pad, pad])
+        g = max(1, int(2 * np.sqrt(self.nq)))
+        x0, y0 = self.q_box[:, 0].min(), self.q_box[:, 1].min()
+        x1, y1 = self.q_box[:, 2].max(), self.q_box[:, 3].max()
+        self.grid = (g, x0, y0, max(x1 - x0, 1e-300) / g, max(y1 - y0, 1e-300) / g)
+        cells: list[list[int]] = [[] for _ in range(g * g)]
+        for i, (bx0, by0, bx1, by1) in enumerate(self.q_box):
+            cx = self._cell(np.array([bx0, bx1]), 1)
+            cy = self._cell(np.array([by0, by1]), 2)
+            for yy in range(cy[0], cy[1] + 1):
+                for xx in range(cx[0], cx[1] + 1):
+                    cells[yy * g + xx].append(i)
+        counts = np.array([len(c) for c in cells])
+        self.cell_start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        self.cell_count = counts
+        self.cell_items = np.array([i for c in cells for i in c], dtype=np.int64)
+
+    def _cell(self, values: np.ndarray, axis: int) -> np.ndarray:
+        g, origin, size = self.grid[0], self.grid[axis], self.grid[axis + 2]
+        return np.clip(((values - origin) / size).astype(np.int64), 0, g - 1)
+
+    def _quadric_pairs(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(point, quadric) index pairs whose projected box contains the point."""
+        g = self.grid[0]
+        cell = self._cell(xy[:, 1], 2) * g + self._cell(xy[:, 0], 1)
+        counts = self.cell_count[cell]
+        pt = np.repeat(np.arange(len(xy)), counts)
+        first = np.repeat(self.cell_start[cell] + counts - np.cumsum(counts), counts)
+        q = self.cell_items[first + np.arange(len(pt))]
+        box = self.q_box[q]
+        p = xy[pt]
+        inside = (p[:, 0] >= box[:, 0]) & (p[:, 0] <= box[:, 2])
+        inside &= (p[:, 1] >= box[:, 1]) & (p[:, 1] <= box[:, 3])
+        return pt[inside], q[inside]
+
+    def hidden(
+        self,
+        xyz: np.ndarray,
+        xy: np.ndarray,
+        owner: np.ndarray,
+        kind: np.ndarray,
+        cause: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """Hidden flags; ``cause`` (optional output) receives, for points hidden
+        by a grouped quadric, that quadric's index (else -1)."""
+        dirs, smax = self.projector.rays(xyz)
+        out = np.zeros(len(xyz), dtype=bool)
+        if cause is not None:
+            cause[:] = -1
+        if self.nq:
+            pt, q = self._quadric_pairs(xy)
+            own = np.where(owner[pt] == self.q_node[q], kind[pt], OFF).astype(np.int8)
+            h = quadric_ray_hits(
+                xyz[pt], dirs[pt], smax[pt], own,
+                self.q_A[q], self.q_b[q], self.q_d[q], self.q_eps[q],
+            )  # fmt: skip
+            out[pt[h]] = True
+            if cause is not None:
+                cause[pt[h]] = q[h]
+        if not self.items:
+            return out
+        # other surfaces: cull by the projected bounding box; points sorted by
+        # x, so each box selects a contiguous slab that is then filtered by y
+        order = np.argsort(xy[:, 0], kind="stable")
+        xs = xy[order, 0]
+        for j, surf, inv, box in self.items:
+            if box is None:
+                idx = np.arange(len(xyz))
+            else:
+                (x0, y0), (x1, y1) = box
+                pad = 1e-9 * (max(x1 - x0, y1 - y0) + 1.0)
+                a, b = np.searchsorted(xs, [x0 - pad, x1 + pad])
+                idx = order[a:b]
+                y = xy[idx, 1]
+                idx = idx[(y >= y0 - pad) & (y <= y1 + pad)]
+            if not len(idx):
+                continue
+            own = np.where(owner[idx] == j, kind[idx], OFF).astype(np.int8)
+            o = inv.apply(xyz[idx])
+            v = inv.apply_vector(dirs[idx])
+            out[idx] |= surf.hits(o, v, smax[idx], own)
+        return out
+
+    def margin(
+        self, xyz: np.ndarray, q: np.ndarray, owner: np.ndarray, kind: np.ndarray
+    ) -> np.ndarray:
+        """Continuous function, positive exactly where ellipsoid ``q`` hides the point.
+
+        With ``qa s^2 + qb s + qc`` the ray's quadratic (``qa > 0``): a point on
+        the ellipsoid is hidden by it iff ``s2 = -qb/qa > 0``; any other point
+        iff it is inside (``qc < 0``) or the ray meets the ellipsoid ahead
+        (``disc >= 0`` and ``qb < 0``).  Used to find flips by regula falsi.
+        """
+        dirs, _ = self.projector.rays(xyz)
+        A, b, d = self.q_A[q], self.q_b[q], self.q_d[q]
+        Av = np.einsum("nij,nj->ni", A, dirs)
+        qa = np.einsum("ni,ni->n", dirs, Av)
+        qb = 2 * np.einsum("ni,ni->n", xyz, Av) + np.einsum("ni,ni->n", dirs, b)
+        qc = np.einsum("ni,nij,nj->n", xyz, A, xyz) + np.einsum("ni,ni->n", xyz, b) + d
+        s_sum = -qb / qa  # r1 + r2
+        foreign = np.maximum(-qc / qa, np.minimum((qb * qb - 4 * qa * qc) / (4 * qa * qa), s_sum))
+        own = owner == self.q_node[q]
+        return np.where(own, np.where(kind == CONTOUR, -1.0, s_sum), foreign)

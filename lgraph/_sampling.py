@@ -1,0 +1,142 @@
+"""Adaptive sampling of curve batches (the renderer's first stage).
+
+Samples of one batch live in flat arrays sorted by (curve index, t); every
+chord's midpoint is kept within the chord tolerance of the true projected
+curve.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import attrs
+import numpy as np
+
+from . import _tolerance as tol
+from .geometry.transforms import Transform
+from .projectors import Projector
+from .surfaces._base import OFF
+
+if TYPE_CHECKING:
+    from .curves import CurveBatch
+
+__all__ = ["Samples", "evaluate", "initial_samples", "merge", "refine", "owner_arrays"]
+
+
+@attrs.define
+class Samples:
+    """Samples of one batch: flat arrays sorted by (curve index, t)."""
+
+    entry: int
+    batch: CurveBatch
+    node: int
+    transform: Transform
+    cid: np.ndarray
+    t: np.ndarray
+    xyz: np.ndarray  # world
+    uv: np.ndarray | None
+    xy: np.ndarray
+    hidden: np.ndarray | None = None
+    cause: np.ndarray | None = None  # grouped quadric hiding each sample, or -1
+
+
+def evaluate(
+    batch: CurveBatch, transform: Transform, projector: Projector, cid: np.ndarray, t: np.ndarray
+) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+    xyz, uv = batch.evaluate(cid, t)
+    xyz = np.asarray(xyz, dtype=float).reshape(-1, 3)
+    if not transform.is_identity:
+        xyz = transform.apply(xyz)
+    return (
+        xyz,
+        (None if uv is None else np.asarray(uv, float).reshape(-1, 2)),
+        projector.project(xyz),
+    )
+
+
+def seg_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance from points ``p`` to segments ``ab`` (all (n, 2))."""
+    ab = b - a
+    ap = p - a
+    den = np.einsum("ij,ij->i", ab, ab)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        s = np.where(den > 0, np.einsum("ij,ij->i", ap, ab) / den, 0.0)
+    s = np.clip(s, 0.0, 1.0)
+    return np.linalg.norm(ap - s[:, None] * ab, axis=1)
+
+
+def initial_samples(
+    entry: int, batch: CurveBatch, node: int, transform: Transform, projector: Projector
+) -> Samples:
+    m = len(batch)
+    k = tol.INITIAL_SAMPLES
+    frac = np.linspace(0.0, 1.0, k)
+    cid = np.repeat(np.arange(m), k)
+    t = (batch.t0[:, None] + (batch.t1 - batch.t0)[:, None] * frac).ravel()
+    xyz, uv, xy = evaluate(batch, transform, projector, cid, t)
+    return Samples(entry, batch, node, transform, cid, t, xyz, uv, xy)
+
+
+def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np.ndarray:  # noqa: ANN001
+    """Insert new samples into ``s``, each right after sample ``after[i]``
+    (``after`` sorted; equal entries keep their given order).  Returns a mask of
+    the new points in the merged arrays."""
+    pos = np.asarray(after) + 1
+    s.cid = np.insert(s.cid, pos, cid)
+    s.t = np.insert(s.t, pos, t)
+    s.xyz = np.insert(s.xyz, pos, xyz, axis=0)
+    s.xy = np.insert(s.xy, pos, xy, axis=0)
+    if s.uv is not None:
+        s.uv = np.insert(s.uv, pos, uv, axis=0)
+    if hidden is not None:
+        s.hidden = np.insert(s.hidden, pos, hidden)
+    new = np.zeros(len(s.t), dtype=bool)
+    new[pos + np.arange(len(pos))] = True
+    return new
+
+
+def refine(s: Samples, projector: Projector, abs_tol: float) -> None:
+    """Refine until every chord's midpoint is within ``abs_tol`` of the curve.
+
+    A chord whose midpoint deviates by ``dev`` is split into
+    ``m = ceil(sqrt(dev / abs_tol))`` equal parts at once (the deviation of a
+    smooth curve shrinks with the square of the chord), so a pass or two
+    usually suffices; the new chords are tested again.
+    """
+    span = s.batch.t1 - s.batch.t0
+    need = np.ones(len(s.t) - 1, dtype=bool)
+    for _ in range(tol.MAX_REFINE_PASSES):
+        seg = need & (s.cid[1:] == s.cid[:-1])
+        seg &= (s.t[1:] - s.t[:-1]) > 1e-12 * span[s.cid[:-1]]
+        idx = np.nonzero(seg)[0]
+        if not len(idx):
+            return
+        tm = 0.5 * (s.t[idx] + s.t[idx + 1])
+        _, _, xy = evaluate(s.batch, s.transform, projector, s.cid[idx], tm)
+        dev = seg_distance(xy, s.xy[idx], s.xy[idx + 1])
+        split = ~(dev <= abs_tol)  # also splits where dev is NaN
+        if not split.any():
+            return
+        idx, dev = idx[split], dev[split]
+        with np.errstate(invalid="ignore"):
+            m = np.ceil(1.05 * np.sqrt(dev / abs_tol))
+        m = np.clip(np.nan_to_num(m, nan=2.0), 2, tol.MAX_SPLIT).astype(np.int64)
+        after = np.repeat(idx, m - 1)
+        j = np.arange(len(after)) - np.repeat(np.cumsum(m - 1) - (m - 1), m - 1) + 1
+        frac = j / np.repeat(m, m - 1)
+        t = s.t[after] + frac * (s.t[after + 1] - s.t[after])
+        c = s.cid[after]
+        xyz, uv, xy = evaluate(s.batch, s.transform, projector, c, t)
+        new = merge(s, after, c, t, xyz, uv, xy)
+        need = new[:-1] | new[1:]
+        if len(s.t) > tol.MAX_POINTS:
+            raise ValueError(
+                f"render: more than {tol.MAX_POINTS} points needed; lower the number of "
+                "lines or raise the tolerance"
+            )
+
+
+def owner_arrays(s: Samples, n: int) -> tuple[np.ndarray, np.ndarray]:
+    if s.batch.surface is None:
+        return np.full(n, -1), np.full(n, OFF, np.int8)
+    return np.full(n, s.node), np.full(n, s.batch.own, np.int8)
