@@ -28,6 +28,9 @@ if TYPE_CHECKING:
 
 __all__ = ["Scene", "Node"]
 
+#: families drawn as the outline (wider by default): the contour and the patch edges
+_OUTLINE = ("contour", "boundary")
+
 
 def _transform(value: Any) -> Transform:
     if value is None:
@@ -60,8 +63,8 @@ def _style(value: Any) -> Style | dict[str, Style]:
 class Node:
     """One object of the scene: a surface or curve with families, transform, style.
 
-    ``style`` is a :class:`Style` for all of the node's lines (the contour is
-    drawn 1.6 times as wide), or a dict mapping family names (``"contour"``,
+    ``style`` is a :class:`Style` for all of the node's lines (the contour and
+    the patch boundary are drawn 1.6 times as wide), or a dict mapping family names (``"contour"``,
     ``"u1"``, ``"curvature"``, ...) to styles, with the key ``"default"`` for the rest.
     """
 
@@ -81,11 +84,11 @@ class Node:
     def style_for(self, family: str) -> Style:
         s = self.style
         if isinstance(s, Style):
-            return s.evolve(width=s.width * 1.6) if family == "contour" else s
+            return s.evolve(width=s.width * 1.6) if family in _OUTLINE else s
         if family in s:
             return s[family]
         base = s.get("default", Style())
-        return base.evolve(width=base.width * 1.6) if family == "contour" else base
+        return base.evolve(width=base.width * 1.6) if family in _OUTLINE else base
 
 
 class Scene:
@@ -106,7 +109,8 @@ class Scene:
         """Add a surface or curve with the given line families.
 
         A surface added with no family gets its class's ``default_families``
-        (:class:`ParameterLines` for most).  Every surface draws its contour unless
+        (:class:`ParameterLines` for most).  Every surface draws its contour
+        and the edges of its drawn patch (family ``"boundary"``) unless
         ``contour=False``; ``hides=False`` makes a surface transparent (its
         lines are drawn, it hides nothing).
         """
@@ -144,6 +148,7 @@ class Scene:
                 out.extend(fam.batches(node.surface, local_projector))
             if node.contour:
                 out.extend(Contour().batches(node.surface, local_projector))
+                out.extend(node.surface.boundary())
         else:
             out.append(node.item.batch())
         return out

@@ -203,9 +203,11 @@ def test_umbilics_family_marks_the_four_umbilics():
     assert u.shape == (4, 3)
     near = set()
     for s in marks:
+        # on the surface (implicit equation), about the radius from an umbilic
+        assert np.max(np.abs(np.sum((s.xyz / [3, 2, 1.3]) ** 2, 1) - 1)) < 1e-12
         dist = np.linalg.norm(s.xyz[:, None, :] - u[None], axis=2)
         k = int(np.argmin(dist.min(axis=0)))
-        assert np.allclose(dist[:, k], 0.05, rtol=1e-9)
+        assert np.allclose(dist[:, k], 0.05, rtol=0.01)
         near.add(k)
     assert near == {0, 1, 2, 3}
     # an umbilic is one where both principal curvatures agree (independent check)

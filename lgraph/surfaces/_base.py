@@ -49,9 +49,11 @@ class Domain:
 
     >>> d = Domain((0, 1), (0, 6.283185307179586), periodic=(False, True))
     >>> d.lines(0, 3).tolist()
-    [0.0, 0.5, 1.0]
+    [0.25, 0.5, 0.75]
     >>> len(d.lines(1, 4))
     4
+    >>> d.ends(0).tolist(), d.ends(1).tolist()
+    ([0.0, 1.0], [])
     """
 
     u1: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u1", v))
@@ -69,19 +71,24 @@ class Domain:
     def lines(self, i: int, n: int) -> np.ndarray:
         """``n`` evenly spread values of ``u_i`` for drawing ``u_i = const`` lines.
 
-        Periodic parameters get ``n`` values without repeating the seam; pole
-        ends are left out; otherwise both ends (the patch boundary) are drawn.
+        Periodic parameters get ``n`` values without repeating the seam;
+        otherwise the ``n`` values split the range into ``n + 1`` equal parts
+        (the ends are the patch boundary, drawn by :meth:`Surface.boundary`, or
+        poles).
         """
         lo, hi = self.range(i)
         if n <= 0:
             return np.empty(0)
         if self.periodic[i]:
             return lo + (hi - lo) * np.arange(n) / n
-        if self.poles[i]:
-            return lo + (hi - lo) * np.arange(1, n + 1) / (n + 1)
-        if n == 1:
-            return np.array([(lo + hi) / 2])
-        return np.linspace(lo, hi, n)
+        return lo + (hi - lo) * np.arange(1, n + 1) / (n + 1)
+
+    def ends(self, i: int) -> np.ndarray:
+        """The values of ``u_i`` at which the patch has a boundary curve (both
+        ends, unless ``u_i`` is periodic; pole ends excluded)."""
+        if self.periodic[i] or self.poles[i]:
+            return np.empty(0)
+        return np.array(self.range(i), dtype=float)
 
 
 class Surface:
@@ -210,6 +217,15 @@ class Surface:
         return principal_directions(self, u1, u2)
 
     # -- what it draws -------------------------------------------------------
+    def boundary(self) -> list[CurveBatch]:
+        """The edges of the drawn patch (family ``"boundary"``), drawn by default
+        like the contour: the parameter lines at the non-periodic, non-pole ends
+        of the domain.  Surfaces made of several pieces override this."""
+        from ..families import parameter_line_batches
+
+        d = self.domain
+        return parameter_line_batches(self, d.ends(0), d.ends(1), "boundary", "boundary")
+
     def parameter_lines(self, n1: int, n2: int) -> list[CurveBatch]:
         """``n1`` lines ``u1 = const`` (family ``"u1"``) and ``n2`` lines
         ``u2 = const`` (``"u2"``), spread by :meth:`Domain.lines`.  Surfaces made

@@ -118,29 +118,47 @@ class Quadric(Surface):
         n, h = contour_plane(self, projector)
         return plane_section(self, n, h)
 
+    def boundary(self) -> list[CurveBatch]:
+        """Edges of the drawn patch; per piece for surfaces made of pieces."""
+        if hasattr(self, "_pieces"):
+            return _piece_lines(self, 0, 0, ("boundary", "boundary"), even=False, ends=True)
+        return super().boundary()
+
     def umbilics(self) -> np.ndarray:
         """Real umbilic points ``(k, 3)`` (default: none)."""
         return np.empty((0, 3))
 
     def umbilic_marks(self, radius: float | None = None) -> list[Any]:
-        """Small circles in the tangent planes around :meth:`umbilics`, as
+        """Small closed curves on the surface around :meth:`umbilics`, as
         :class:`~lgraph.curves.Curve` objects to add to a scene (marking them).
 
-        ``radius`` defaults to 1.5 % of the patch size.
+        Each is the circle of ``radius`` about the umbilic in its tangent plane,
+        moved along the umbilic's normal onto the quadric (the root of the
+        quadratic nearest the plane), so it lies on the surface and is seen
+        from either side.  ``radius`` defaults to 1.5 % of the patch size.
         """
         from ..curves import Curve
 
         r = 0.015 * self.size if radius is None else float(radius)
+        A, b, d = self.coefficients
         out = []
         for u in self.umbilics():
             nrm = self.gradient(u)
+            nrm = nrm / np.linalg.norm(nrm)
             e1, e2 = _plane_basis(nrm)
 
-            def circle(t: np.ndarray, u=u, e1=e1, e2=e2) -> np.ndarray:
+            def mark(t: np.ndarray, u=u, n=nrm, e1=e1, e2=e2) -> np.ndarray:
                 t = np.asarray(t, float)[..., None]
-                return u + r * (np.cos(t) * e1 + np.sin(t) * e2)
+                p = u + r * (np.cos(t) * e1 + np.sin(t) * e2)
+                # F(p + s n) = qa s^2 + qb s + qc; the small root (stable form)
+                qa = n @ A @ n
+                qb = 2 * (p @ A) @ n + b @ n
+                qc = np.einsum("...i,ij,...j", p, A, p) + p @ b + d
+                disc = np.sqrt(np.maximum(qb * qb - 4 * qa * qc, 0.0))
+                s = -2 * qc / (qb + np.copysign(disc, qb))
+                return p + s[..., None] * n
 
-            out.append(Curve(circle, 0.0, 2 * np.pi, closed=True))
+            out.append(Curve(mark, 0.0, 2 * np.pi, closed=True))
         return out
 
     def describe(self) -> str:
@@ -344,7 +362,7 @@ class _PatchQuadric(Quadric):
 
 
 def _piece_lines(
-    surface: Any, n1: int, n2: int, names: tuple[str, str], even: bool
+    surface: Any, n1: int, n2: int, names: tuple[str, str], even: bool, ends: bool = False
 ) -> list[CurveBatch]:
     """Lines ``u1 = const`` and ``u2 = const`` on every piece of a surface.
 
@@ -354,6 +372,7 @@ def _piece_lines(
     piece-selecting parameter (so that ``-0.0`` and rounding never jump to
     another piece), or None.  ``even``: spread the ``u2 = const`` lines evenly
     by arc length (lines of curvature of cylinders) instead of uniformly.
+    ``ends``: the pieces' edges instead (``n1, n2`` unused).
     """
     from ._patch import spread
 
@@ -361,8 +380,10 @@ def _piece_lines(
     for r1, r2, mode, fix in surface._pieces():
         per = mode == "periodic"
         sub = Domain(r1, r2, periodic=(False, per))
-        c1 = sub.lines(0, n1)
-        if even:
+        c1 = sub.ends(0) if ends else sub.lines(0, n1)
+        if ends:
+            c2 = sub.ends(1)
+        elif even:
             sg = 1.0 if fix is None or fix[0] != 1 else fix[1]
             c2 = spread(
                 lambda s, r=r1[0], sg=sg: surface.point(

@@ -510,15 +510,14 @@ class _Ruled(Surface):
             p = self.point(t, v)
             if np.ptp(p, axis=0).max() > 1e-9 * self.size:
                 keep.append(v)
-        out = [self._u2_line_batch(np.array(keep), "contour")] if keep else []
+        out = [self._u2_line_batch(np.array(keep), "boundary")] if keep else []
         if not c.closed:
-            out.append(self._ruling_batch(np.array([c.t0, c.t1]), "contour"))
+            out.append(self._ruling_batch(np.array([c.t0, c.t1]), "boundary"))
         return out
 
     def contour(self, projector: Any) -> list[CurveBatch]:
         """Contour of the drawn patch for ``projector`` (local frame): the curve
-        ``u2 = -A/B`` (whole rulings for developable surfaces) and, with
-        ``boundary=True``, the patch edges."""
+        ``u2 = -A/B`` (whole rulings for developable surfaces)."""
         out: list[CurveBatch] = []
         if self._contour_kind == "general":
             out.extend(self._contour_general(projector))
@@ -528,9 +527,11 @@ class _Ruled(Surface):
             if len(roots):
                 out.append(self._ruling_batch(roots, "contour"))
         out.extend(self._extra_contour())
-        if self.boundary:
-            out.extend(self._edges())
         return [attrs.evolve(b, own=CONTOUR) for b in out]
+
+    def boundary(self) -> list[CurveBatch]:
+        """The patch edges (with ``edges=True``, the default; none otherwise)."""
+        return self._edges() if self.edges else []
 
     def _extra_contour(self) -> list[CurveBatch]:
         return []
@@ -718,7 +719,7 @@ class RuledSurface(_Ruled):
         The drawn part of each ruling; default ``(0, diameter of the directrix)``.
     director_derivative : callable, optional
         Analytic derivative of ``director`` (numeric otherwise).
-    boundary : bool
+    edges : bool
         Draw the patch's edges with its contour (default True).
 
     >>> import numpy as np
@@ -738,7 +739,7 @@ class RuledSurface(_Ruled):
     director: Any = attrs.field(default=None)
     u2_range: tuple[float, float] = _u2_range("RuledSurface")
     director_derivative: Any = attrs.field(default=None, kw_only=True, repr=False)
-    boundary: bool = attrs.field(default=True, kw_only=True)
+    edges: bool = attrs.field(default=True, kw_only=True)
     _cache: dict = attrs.field(init=False, factory=dict, repr=False)
 
     def __attrs_post_init__(self) -> None:
@@ -923,6 +924,6 @@ class TangentSurface(RuledSurface):
 
     def _extra_contour(self) -> list[CurveBatch]:
         lo, hi = self.u2_range
-        if lo <= 0.0 <= hi and not (self.boundary and 0.0 in (lo, hi)):
+        if lo <= 0.0 <= hi and not (self.edges and 0.0 in (lo, hi)):
             return [self._u2_line_batch(np.array([0.0]), "contour")]
         return []

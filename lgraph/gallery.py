@@ -1,0 +1,438 @@
+"""The figure gallery: ``lgraph gallery OUTDIR`` and the helpers gallery scripts use.
+
+A gallery script (``gallery/<stem>.py``) is a short module that defines
+
+* ``CAPTION: str`` -- what is shown, the surface's equation, the parameters;
+* ``build()`` returning ``(scene, projector)``, or ``(scene, projector, render_kwargs)``
+  (e.g. ``{"hidden_lines": True}``), or a list of such tuples, one per panel;
+* ``if __name__ == "__main__": run_script_main(__file__, build)``, which writes
+  ``<stem>.pdf`` and ``<stem>.png`` into the current folder.
+
+Multi-panel figures become one drawing: the panels are scaled to a common
+height and laid out left to right (:func:`render_figure`), so every figure is
+exactly one ``<stem>.pdf`` and one ``<stem>.png``.
+
+:func:`build_gallery` renders every script in parallel worker processes and
+writes ``OUTDIR/<stem>.pdf``, ``OUTDIR/<stem>.png``, ``OUTDIR/src/<stem>.py``
+and ``OUTDIR/index.html``.
+
+>>> import lgraph as lg
+>>> scene = lg.Scene()
+>>> _ = scene.add(lg.Sphere(1), lg.ParameterLines(3, 4))
+>>> p = lg.ParallelProjector(direction=(1, 0, 0))
+>>> one = render_figure((scene, p))
+>>> two = render_figure([(scene, p), (scene, p, {"hidden_lines": True})])
+>>> w1 = one.bounds()[2] - one.bounds()[0]
+>>> w2 = two.bounds()[2] - two.bounds()[0]
+>>> w2 > 2 * w1
+True
+"""
+
+from __future__ import annotations
+
+import ast
+import html
+import importlib.util
+import os
+import re
+import shutil
+import sys
+import time
+import traceback
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+from typing import Any, TextIO
+
+import attrs
+import numpy as np
+
+__all__ = [
+    "build_gallery",
+    "default_gallery_dir",
+    "discover_scripts",
+    "render_figure",
+    "run_script_main",
+    "script_caption",
+    "figure_title",
+]
+
+#: Gap between panels, as a fraction of the common panel height.
+PANEL_GAP = 0.12
+
+#: Longer side of a one-panel figure's page in pt; n panels get n times as much
+#: width (up to 3 panels), so each panel keeps its size.
+PAGE_EXTENT = 500.0
+
+#: Resolution of the gallery PNGs.
+PNG_DPI = 150
+
+
+# -- scripts ------------------------------------------------------------------
+def default_gallery_dir() -> Path:
+    """The repository's ``gallery/`` folder, next to the ``lgraph`` package.
+
+    Raises FileNotFoundError with a clear message when lgraph is installed
+    without its gallery scripts (a non-editable install).
+    """
+    import lgraph
+
+    here = Path(lgraph.__file__).resolve().parent.parent / "gallery"
+    if not here.is_dir():
+        raise FileNotFoundError(
+            f"lgraph gallery: no gallery scripts at {str(here)!r}; the gallery ships with "
+            "the source tree, not with an installed wheel (install lgraph from a checkout "
+            "with `pip install -e .`, or run from the repository root)"
+        )
+    return here
+
+
+def _natural_key(stem: str) -> tuple[int, list[Any]]:
+    # paper figures first (in the paper's order), then the extras by name
+    parts = [int(p) if p.isdigit() else p for p in re.split(r"(\d+)", stem)]
+    return (0 if stem.startswith("fig_") else 1, parts)
+
+
+def discover_scripts(source_dir: str | os.PathLike[str] | None = None) -> list[Path]:
+    """Gallery scripts in ``source_dir`` (default :func:`default_gallery_dir`):
+    every ``*.py`` not starting with ``_``, paper figures first."""
+    folder = Path(source_dir) if source_dir is not None else default_gallery_dir()
+    if not folder.is_dir():
+        raise FileNotFoundError(f"lgraph gallery: folder {str(folder)!r} does not exist")
+    scripts = [p for p in folder.glob("*.py") if not p.name.startswith("_")]
+    return sorted(scripts, key=lambda p: _natural_key(p.stem))
+
+
+def script_caption(path: str | os.PathLike[str]) -> str:
+    """The script's ``CAPTION`` read from its source (without running it);
+    empty if it is not a plain string literal."""
+    try:
+        tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    except (OSError, SyntaxError, ValueError):
+        return ""
+    for node in tree.body:
+        targets = []
+        if isinstance(node, ast.Assign):
+            targets, value = node.targets, node.value
+        elif isinstance(node, ast.AnnAssign) and node.value is not None:
+            targets, value = [node.target], node.value
+        if any(isinstance(t, ast.Name) and t.id == "CAPTION" for t in targets):
+            try:
+                v = ast.literal_eval(value)
+            except ValueError:
+                return ""
+            return v if isinstance(v, str) else ""
+    return ""
+
+
+def figure_title(stem: str) -> str:
+    """Human title from a script name.
+
+    >>> figure_title("fig_7_2_ellipsoid")
+    'Figure 7.2: ellipsoid'
+    >>> figure_title("extra_hidden_dashed")
+    'Hidden dashed'
+    """
+    m = re.fullmatch(r"fig_(\d+)_(\d+)_?(.*)", stem)
+    if m:
+        rest = m.group(3).replace("_", " ")
+        return f"Figure {m.group(1)}.{m.group(2)}" + (f": {rest}" if rest else "")
+    rest = stem[6:] if stem.startswith("extra_") else stem
+    rest = rest.replace("_", " ").strip()
+    return rest[:1].upper() + rest[1:]
+
+
+def _load_module(path: Path) -> Any:
+    folder = str(path.parent)
+    if folder not in sys.path:  # scripts may share private helpers (_common.py)
+        sys.path.insert(0, folder)
+    name = f"lgraph_gallery_{path.stem}"
+    spec = importlib.util.spec_from_file_location(name, path)
+    if spec is None or spec.loader is None:  # pragma: no cover - .py files always load
+        raise ImportError(f"cannot load gallery script {str(path)!r}")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+# -- rendering ------------------------------------------------------------------
+def _panels(result: Any) -> list[tuple[Any, Any, dict[str, Any]]]:
+    """Normalize what ``build()`` returns to a list of (scene, projector, kwargs)."""
+    if isinstance(result, tuple):
+        result = [result]
+    if not isinstance(result, list) or not result:
+        raise TypeError(
+            "gallery: build() must return (scene, projector[, render_kwargs]) or a non-empty "
+            f"list of them, got {type(result).__name__}"
+        )
+    out = []
+    for i, panel in enumerate(result):
+        if not isinstance(panel, tuple) or len(panel) not in (2, 3):
+            raise TypeError(
+                f"gallery: panel {i} must be (scene, projector) or (scene, projector, "
+                f"render_kwargs), got {panel!r:.80}"
+            )
+        kwargs = dict(panel[2]) if len(panel) == 3 else {}
+        out.append((panel[0], panel[1], kwargs))
+    return out
+
+
+def render_figure(result: Any, tolerance: float | None = None) -> Any:
+    """Render what a gallery ``build()`` returns into one :class:`~lgraph.Drawing`.
+
+    Several panels are scaled to the height of the tallest one and placed left
+    to right with a small gap.  ``tolerance`` (if given) overrides the chord
+    tolerance of panels that do not set their own.
+    """
+    from .drawing import Drawing, Page
+
+    drawings = []
+    for scene, projector, kwargs in _panels(result):
+        if tolerance is not None:
+            kwargs.setdefault("tolerance", tolerance)
+        drawings.append(scene.render(projector, **kwargs))
+    if len(drawings) == 1:
+        return drawings[0]
+    boxes = [d.bounds() for d in drawings]
+    height = max(max(b[3] - b[1], 1e-300) for b in boxes)
+    strokes = []
+    x = 0.0
+    for d, (x0, y0, x1, y1) in zip(drawings, boxes):
+        h = max(y1 - y0, 1e-300)
+        k = height / h
+        shift = np.array([x - k * x0, -k * (y0 + y1) / 2])
+        strokes.extend(attrs.evolve(s, xy=s.xy * k + shift) for s in d.strokes)
+        x += k * (x1 - x0) + PANEL_GAP * height
+    page = Page(extent=PAGE_EXTENT * min(len(drawings), 3))
+    return Drawing(strokes=strokes, page=page, background=drawings[0].background)
+
+
+def _save(drawing: Any, folder: Path, stem: str) -> list[Path]:
+    return [
+        drawing.save(folder / f"{stem}.pdf"),
+        drawing.save(folder / f"{stem}.png", dpi=PNG_DPI),
+    ]
+
+
+def run_script_main(file: str, build: Callable[[], Any]) -> list[Path]:
+    """The ``__main__`` block of a gallery script: render ``build()`` and write
+    ``<stem>.pdf`` and ``<stem>.png`` into the current folder."""
+    stem = Path(file).stem
+    t0 = time.perf_counter()
+    paths = _save(render_figure(build()), Path("."), stem)
+    for p in paths:
+        print(f"wrote {p.resolve()}")
+    print(f"{stem}: {time.perf_counter() - t0:.1f} s")
+    return paths
+
+
+def _build_one(path: str, outdir: str, tolerance: float | None) -> dict[str, Any]:
+    """Worker: import, build, render and save one figure; never raises."""
+    t0 = time.perf_counter()
+    stem = Path(path).stem
+    info: dict[str, Any] = {"stem": stem, "caption": None, "error": None}
+    try:
+        module = _load_module(Path(path))
+        caption = getattr(module, "CAPTION", None)
+        info["caption"] = caption if isinstance(caption, str) else None
+        if not callable(getattr(module, "build", None)):
+            raise AttributeError(f"gallery script {stem} defines no build() function")
+        drawing = render_figure(module.build(), tolerance)
+        if not drawing.strokes:
+            raise ValueError(f"gallery script {stem} drew nothing (no strokes)")
+        _save(drawing, Path(outdir), stem)
+        info["strokes"] = len(drawing.strokes)
+    except BaseException:  # noqa: BLE001 - report everything, keep going
+        info["error"] = traceback.format_exc()
+    info["seconds"] = time.perf_counter() - t0
+    return info
+
+
+# -- the page -----------------------------------------------------------------
+_CSS = """
+body { font-family: Georgia, 'Times New Roman', serif; margin: 0; background: #f6f6f3;
+       color: #222; }
+header { padding: 1.5em 2em 0.5em; }
+header h1 { margin: 0 0 0.2em; font-weight: normal; }
+header p { margin: 0.2em 0; color: #555; }
+h2 { font-weight: normal; margin: 1.2em 2em 0.4em; border-bottom: 1px solid #ccc; }
+.grid { display: grid; grid-template-columns: repeat(auto-fill, minmax(320px, 1fr));
+        gap: 1.2em; padding: 0.5em 2em 2em; }
+figure { margin: 0; background: #fff; border: 1px solid #ddd; border-radius: 4px;
+         padding: 0.8em; display: flex; flex-direction: column; }
+figure a.thumb { display: flex; align-items: center; justify-content: center;
+                 height: 240px; }
+figure img { max-width: 100%; max-height: 240px; object-fit: contain; }
+figcaption { font-size: 0.9em; line-height: 1.35; margin-top: 0.6em; flex: 1; }
+figcaption b { display: block; margin-bottom: 0.25em; }
+.links { font-size: 0.85em; margin-top: 0.5em; font-family: sans-serif; }
+.links a { margin-right: 0.9em; color: #2a5db0; }
+.failed { border-color: #c33; }
+.failed pre { font-size: 0.75em; white-space: pre-wrap; color: #a00; max-height: 200px;
+              overflow: auto; }
+"""
+
+# Marks each thumbnail data-loaded="1" / "0" once the page has loaded, and the
+# body with the count, so that a headless browser's DOM dump shows the result.
+_SCRIPT = """
+window.addEventListener("load", function () {
+  var imgs = document.querySelectorAll("img.thumbnail"), ok = 0;
+  imgs.forEach(function (img) {
+    var good = img.complete && img.naturalWidth > 0;
+    img.setAttribute("data-loaded", good ? "1" : "0");
+    if (good) { ok += 1; }
+  });
+  document.body.setAttribute("data-thumbnails", ok + "/" + imgs.length);
+});
+"""
+
+
+def _card(item: dict[str, Any]) -> str:
+    stem = item["stem"]
+    e = html.escape
+    title = e(figure_title(stem))
+    caption = e(item.get("caption") or "")
+    src = f'<a href="src/{e(stem)}.py">source</a>'
+    if item.get("error"):
+        last = item["error"].strip().splitlines()[-1] if item["error"].strip() else ""
+        return (
+            f'<figure class="failed" id="{e(stem)}"><figcaption><b>{title}</b>{caption}'
+            f"<pre>build failed: {e(last)}</pre></figcaption>"
+            f'<div class="links">{src}</div></figure>'
+        )
+    return (
+        f'<figure id="{e(stem)}">'
+        f'<a class="thumb" href="{e(stem)}.pdf"><img class="thumbnail" src="{e(stem)}.png" '
+        f'alt="{title}"></a>'
+        f"<figcaption><b>{title}</b>{caption}</figcaption>"
+        f'<div class="links"><a href="{e(stem)}.pdf">PDF</a><a href="{e(stem)}.png">PNG</a>'
+        f"{src}</div></figure>"
+    )
+
+
+def write_index(outdir: Path, items: Sequence[dict[str, Any]]) -> Path:
+    """Write ``outdir/index.html`` for the built ``items`` (in order)."""
+    from . import __version__
+
+    sections = [
+        ("Figures of the paper", [i for i in items if i["stem"].startswith("fig_")]),
+        ("Beyond the paper", [i for i in items if not i["stem"].startswith("fig_")]),
+    ]
+    body = []
+    for heading, group in sections:
+        if group:
+            cards = "\n".join(_card(i) for i in group)
+            body.append(f'<h2>{heading}</h2>\n<div class="grid">\n{cards}\n</div>')
+    page = (
+        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
+        f"<title>lgraph gallery</title>\n<style>{_CSS}</style>\n"
+        f"<script>{_SCRIPT}</script>\n</head>\n<body>\n<header><h1>lgraph gallery</h1>\n"
+        "<p>Lines of curvature and other line families on surfaces, drawn with exact "
+        "hidden-line removal. Click a picture for its PDF.</p>\n"
+        f"<p>{len(items)} figures, lgraph {html.escape(__version__)}. Figure numbers follow "
+        "V. Veli&#269;kovi&#263;, <i>Visualization of lines of curvature on quadratic "
+        "surfaces</i>, Facta Univ. Ser. Math. Inform. 32 (2017) 11&ndash;29.</p></header>\n"
+        + "\n".join(body)
+        + "\n</body>\n</html>\n"
+    )
+    path = outdir / "index.html"
+    path.write_text(page, encoding="utf-8")
+    return path
+
+
+# -- the command ----------------------------------------------------------------
+def build_gallery(
+    outdir: str | os.PathLike[str],
+    jobs: int | None = None,
+    only: Sequence[str] | None = None,
+    *,
+    source_dir: str | os.PathLike[str] | None = None,
+    tolerance: float | None = None,
+    stream: TextIO | None = None,
+) -> int:
+    """Build every gallery figure into ``outdir``; return the exit status.
+
+    Parameters
+    ----------
+    outdir : path
+        Output folder (created if missing).
+    jobs : int, optional
+        Worker processes (default ``os.cpu_count()``); ``1`` builds in this process.
+    only : list of str, optional
+        Build only scripts whose name contains one of these strings.
+    source_dir : path, optional
+        Folder of gallery scripts (default: the repository's ``gallery/``).
+    tolerance : float, optional
+        Override the chord tolerance (e.g. ``1e-3`` for quick drafts).
+    stream : text file, optional
+        Where progress goes (default ``sys.stdout``).
+
+    Returns
+    -------
+    int
+        0 when every figure was built, 1 when any failed (each failure is
+        reported with its traceback; the other figures are still built),
+        2 when there was nothing to build.
+    """
+    out = stream if stream is not None else sys.stdout
+    scripts = discover_scripts(source_dir)
+    if only:
+        scripts = [p for p in scripts if any(s in p.stem for s in only)]
+    if not scripts:
+        print("lgraph gallery: no gallery scripts match", file=out)
+        return 2
+    outdir = Path(outdir)
+    (outdir / "src").mkdir(parents=True, exist_ok=True)
+    for p in scripts:
+        shutil.copyfile(p, outdir / "src" / p.name)
+    n = len(scripts)
+    jobs = max(1, min(jobs or os.cpu_count() or 1, n))
+    print(f"lgraph gallery: building {n} figures into {outdir} with {jobs} worker(s)", file=out)
+    out.flush()
+
+    results: dict[str, dict[str, Any]] = {}
+    t0 = time.perf_counter()
+
+    def report(info: dict[str, Any]) -> None:
+        results[info["stem"]] = info
+        status = "FAILED" if info["error"] else f"{info['seconds']:.1f} s"
+        print(f"[{len(results)}/{n}] {info['stem']}  {status}", file=out)
+        if info["error"]:
+            print(info["error"].rstrip(), file=out)
+        out.flush()
+
+    if jobs == 1:
+        for p in scripts:
+            report(_build_one(str(p), str(outdir), tolerance))
+    else:
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            futures = {pool.submit(_build_one, str(p), str(outdir), tolerance): p for p in scripts}
+            for fut in as_completed(futures):
+                p = futures[fut]
+                try:
+                    info = fut.result()
+                except BaseException:  # noqa: BLE001 - a worker died (e.g. killed)
+                    info = {
+                        "stem": p.stem,
+                        "caption": None,
+                        "seconds": 0.0,
+                        "error": traceback.format_exc(),
+                    }
+                report(info)
+
+    items = []
+    for p in scripts:
+        info = results[p.stem]
+        if info.get("caption") is None:
+            info["caption"] = script_caption(p)
+        items.append(info)
+    index = write_index(outdir, items)
+    failed = [i["stem"] for i in items if i["error"]]
+    took = time.perf_counter() - t0
+    print(f"wrote {index} ({n - len(failed)}/{n} figures, {took:.1f} s)", file=out)
+    if failed:
+        print(f"lgraph gallery: {len(failed)} failed: {', '.join(failed)}", file=out)
+        return 1
+    return 0
