@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
 import lgraph as lg
 
 CAPTION = (
@@ -18,21 +16,7 @@ A, B, H = 1.5, 1.0, 1.0
 
 def build() -> tuple[lg.Scene, lg.Projector]:
     scene = lg.Scene()
-    if hasattr(lg, "EllipticCone"):
-        scene.add(lg.EllipticCone(A, B, height=H), lg.LinesOfCurvature(8, 32))
-        for z in (-H, H):  # the rims |z| = H outline the drawn patch
-            rim = lg.Curve(
-                lambda t, z=z: np.stack([A * z * np.cos(t), B * z * np.sin(t), 0 * t + z], -1),
-                0, 2 * np.pi, closed=True,
-            )  # fmt: skip
-            scene.add(rim, style=lg.Style(width=0.8))
-    else:  # the same cone as a general cone over the ellipse at height H, both nappes
-        ellipse = lg.Curve(
-            lambda t: np.stack([A * H * np.cos(t), B * H * np.sin(t), 0 * t + H], -1),
-            0, 2 * np.pi, closed=True,
-        )  # fmt: skip
-        cone = lg.GeneralCone(ellipse, apex=(0, 0, 0), scaled=True, u2_range=(-1, 1))
-        scene.add(cone, lg.LinesOfCurvature(32, 8))
+    scene.add(lg.EllipticCone(A, B, height=H), lg.LinesOfCurvature(8, 32))
     return scene, lg.ParallelProjector.from_angles(-60, 20)
 
 

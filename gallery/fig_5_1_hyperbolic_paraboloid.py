@@ -18,7 +18,7 @@ CAPTION = (
 def build() -> tuple[lg.Scene, lg.Projector]:
     scene = lg.Scene()
     surface = lg.HyperbolicParaboloid(1.2, 1.0, extent=1.4)
-    scene.add(surface, lg.LinesOfCurvature(14, 14), lg.ParameterLines(2, 2))
+    scene.add(surface, lg.LinesOfCurvature(14, 14))
     return scene, lg.CentralProjector.from_angles(-60, 30, 12)
 
 

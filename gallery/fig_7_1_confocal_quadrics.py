@@ -22,10 +22,7 @@ def build() -> tuple[lg.Scene, lg.Projector]:
     system = lg.TripleOrthogonalSystem.confocal(A, B, C, LAMS, height=2.5)
     scene = lg.Scene()
     for member in system.members:
-        families = [lg.LinesOfCurvature(7, 7)]
-        if member.kind != "ellipsoid":
-            families.append(lg.ParameterLines(2, 0))  # the rims of the cut hyperboloids
-        scene.add(member, *families)
+        scene.add(member, lg.LinesOfCurvature(7, 7))
     for curve in system.curves:
         scene.add(curve, style=lg.Style(width=1.0))
     return scene, lg.CentralProjector.from_angles(-60, 30, 24)

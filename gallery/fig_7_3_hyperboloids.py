@@ -17,11 +17,9 @@ CAPTION = (
 
 def build() -> list[tuple[lg.Scene, lg.Projector]]:
     one = lg.Scene()
-    one.add(lg.HyperboloidOneSheet(1.2, 1.8, 1.5, height=3), lg.LinesOfCurvature(10, 16),
-            lg.ParameterLines(2, 0))  # fmt: skip
+    one.add(lg.HyperboloidOneSheet(1.2, 1.8, 1.5, height=3), lg.LinesOfCurvature(10, 16))
     two = lg.Scene()
-    two.add(lg.HyperboloidTwoSheets(1.2, 1.8, 1.5), lg.LinesOfCurvature(8, 12),
-            lg.ParameterLines(2, 0))  # fmt: skip
+    two.add(lg.HyperboloidTwoSheets(1.2, 1.8, 1.5), lg.LinesOfCurvature(8, 12))
     return [
         (one, lg.CentralProjector.from_angles(-40, 20, 18)),
         (two, lg.CentralProjector.from_angles(-40, 20, 22)),

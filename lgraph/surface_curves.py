@@ -65,6 +65,10 @@ class AsymptoticLines(Family):
     """``n1`` and ``n2`` asymptotic lines (``II(du) = 0``) of the two families,
     on the part of the surface where the Gauss curvature is negative.
 
+    Surfaces with closed forms supply ``asymptotic_lines(n1, n2)`` (the rulings
+    of the hyperboloid of one sheet and the hyperbolic paraboloid); others are
+    integrated numerically.
+
     >>> AsymptoticLines(-1, 3)
     Traceback (most recent call last):
     ...
@@ -75,6 +79,9 @@ class AsymptoticLines(Family):
     n2: int = attrs.field(default=8, validator=count("AsymptoticLines"))
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        closed_form = getattr(surface, "asymptotic_lines", None)
+        if closed_form is not None:  # e.g. the rulings of doubly ruled quadrics
+            return [attrs.evolve(b, family="asymptotic") for b in closed_form(self.n1, self.n2)]
         return field_line_batches(
             surface, asymptotic_field, self.n1, self.n2, stop=0.01, family="asymptotic"
         )

@@ -470,6 +470,38 @@ class HyperboloidOneSheet(_PatchQuadric):
         x2 = np.stack([-self.a * ch * s2, self.b * ch * c2, np.zeros_like(ch)], axis=-1)
         return x1, x2
 
+    def asymptotic_lines(self, n1: int, n2: int) -> list[CurveBatch]:
+        """The two families of rulings (the asymptotic lines of a doubly ruled
+        surface): ``n1`` and ``n2`` lines through points of the waist ellipse
+        at evenly spaced angles ``th``,
+        ``x = (a (cos th - s sin th), b (sin th + s cos th), +-c s)``,
+        ``|s| <= height / c`` (then ``x^2/a^2 + y^2/b^2 = 1 + s^2 = 1 + z^2/c^2``).
+        """
+        smax = self.height / self.c
+        out = []
+        for n, sign in ((n1, 1.0), (n2, -1.0)):
+            if n <= 0:
+                continue
+            th = 2 * np.pi * (np.arange(n) + 0.25 * (1 - sign)) / n
+
+            def evaluate(idx: np.ndarray, s: np.ndarray, th=th, sign=sign) -> tuple:
+                t = th[idx]
+                x = np.stack(
+                    [
+                        self.a * (np.cos(t) - s * np.sin(t)),
+                        self.b * (np.sin(t) + s * np.cos(t)),
+                        sign * self.c * s,
+                    ],
+                    axis=-1,
+                )
+                return x, self.uv_of(x)
+
+            out.append(
+                CurveBatch("asymptotic", np.full(n, -smax), np.full(n, smax), evaluate,
+                           surface=self)  # fmt: skip
+            )
+        return out
+
     def uv_of(self, points: Any) -> np.ndarray:
         x = np.asarray(points, float)
         return np.stack(
@@ -739,6 +771,29 @@ class HyperbolicParaboloid(_PatchQuadric):
             np.stack([self.a * one, zero, 2 * u1], axis=-1),
             np.stack([zero, self.b * one, -2 * u2], axis=-1),
         )
+
+    def asymptotic_lines(self, n1: int, n2: int) -> list[CurveBatch]:
+        """The two families of rulings: with ``p = x/a + y/b`` and
+        ``q = x/a - y/b`` the surface is ``z = p q``, so ``p = const`` and
+        ``q = const`` are straight lines on it.  ``n1`` values of ``p`` and
+        ``n2`` of ``q`` are spread over ``(-2 e, 2 e)``; each line is cut exactly
+        to the square patch (``|p + q|, |p - q| <= 2 e``, so the free parameter
+        runs over ``|c| - 2 e .. 2 e - |c|``).
+        """
+        e = self.extent
+        out = []
+        for n, swap in ((n1, False), (n2, True)):
+            if n <= 0:
+                continue
+            c = Domain((-2 * e, 2 * e), (0.0, 1.0)).lines(0, n)
+            half = 2 * e - np.abs(c)
+
+            def uv(idx: np.ndarray, t: np.ndarray, c=c, swap=swap) -> np.ndarray:
+                p, q = (t, c[idx]) if swap else (c[idx], t)
+                return np.column_stack([(p + q) / 2, (p - q) / 2])
+
+            out.append(CurveBatch.from_uv(self, "asymptotic", -half, half, uv))
+        return out
 
     def uv_of(self, points: Any) -> np.ndarray:
         x = np.asarray(points, float)
