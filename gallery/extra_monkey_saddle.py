@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import lgraph as lg
 
 CAPTION = (
-    "Lines of curvature on the monkey saddle z = x^3 - 3xy^2, |x|, |y| <= 1, integrated "
-    "numerically from the principal direction field; they stop at the flat umbilic at the origin."
+    "Lines of curvature on the monkey saddle z = 0.6 (x^3 - 3xy^2), |x|, |y| <= 1, integrated "
+    "numerically from the principal direction field and seeded to lie evenly spaced (lines "
+    "are cut where they come closer than half the spacing to another line of the family); "
+    "they stop at the flat umbilic at the origin."
 )
 
 
@@ -19,7 +19,6 @@ def build() -> tuple[lg.Scene, lg.Projector]:
 
 
 if __name__ == "__main__":
-    scene, proj = build()
-    drawing = scene.render(proj)
-    for suffix in (".pdf", ".png"):
-        drawing.save(Path(__file__).stem + suffix)
+    from lgraph.gallery import run_script_main
+
+    run_script_main(__file__, build)

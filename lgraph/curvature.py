@@ -291,7 +291,8 @@ class _FieldLines:
                     if np.linalg.norm(self._point(0, k, tc) - start3[k]) < 1e-6 * size:
                         self.closed[k] = True
                         self.ends[0, k] = tc
-                        self.ends[1, k] = 0.0
+
+        self.ends[1, self.closed] = 0.0  # a closed line is its forward loop
 
     def _stopped(self, uv: np.ndarray, field: Any, which: np.ndarray, stop: float) -> np.ndarray:
         d = self.domain
@@ -390,6 +391,116 @@ def _spread(lines: _FieldLines, k: int, n: int) -> np.ndarray:
     return lines.uv(k, t)
 
 
+def _line_samples(lines: _FieldLines, step: float) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Every line sampled about ``step`` apart in arc length: ``(t, xyz)`` per
+    line, ``t`` increasing from the backward end to the forward end (all
+    lines evaluated together, once per half)."""
+    out = []
+    halves = []
+    for h in (0, 1):
+        tmax = float(lines.ends[h].max())
+        t = np.arange(0.0, tmax + step, step) if tmax > 0 else np.zeros(1)
+        uv = np.asarray(lines.sols[h](t)).reshape(lines.m, 2, -1).transpose(0, 2, 1)
+        halves.append((t, uv))
+    d = lines.domain
+    for k in range(lines.m):
+        (tf, uf), (tb, ub) = halves
+        f = tf <= lines.ends[0, k]
+        b = (tb <= lines.ends[1, k]) & (tb > 0)
+        t = np.concatenate([-tb[b][::-1], tf[f]])
+        uv = np.concatenate([ub[k][b][::-1], uf[k][f]])
+        for i in (0, 1):
+            lo, hi = d.range(i)
+            uv[:, i] = lo + np.mod(uv[:, i] - lo, hi - lo) if d.periodic[i] else uv[:, i]
+        out.append((t, lines.surface.point(uv[:, 0], uv[:, 1])))
+    return out
+
+
+def _keep_pieces(
+    lines: _FieldLines,
+    pieces: list,
+    points: list,
+    dsep: float,
+    min_length: float,
+    step: float,
+    placed: bool = False,
+) -> list[np.ndarray]:
+    """Trim each line of ``lines`` (in order) where it comes closer than
+    ``dsep / 2`` to lines already kept, keeping the run of samples through its
+    seed (evenly spaced streamlines, Jobard and Lefer 1997); drop runs shorter
+    than ``min_length``.  A closed line is kept whole.  Lines from ``placed``
+    seeds (spread along a transversal) are always kept, at least ``dsep / 2``
+    either side of the seed.  Appends ``(lines, k, ta, tb, closed)`` to ``pieces``
+    and the kept samples to ``points``; returns the samples of dropped lines."""
+    from scipy.spatial import cKDTree
+
+    dtest = 0.5 * dsep
+    dropped = []
+    for k, (t, x) in enumerate(_line_samples(lines, step)):
+        if len(t) < 2:
+            dropped.append(x)
+            continue
+        if points:
+            dist, _ = cKDTree(np.concatenate(points)).query(x)
+            free = dist > dtest
+        else:
+            free = np.ones(len(t), bool)
+        i = int(np.argmin(np.abs(t)))  # the seed
+        if placed:
+            free[np.abs(t) <= dtest] = True
+        if not free[i]:
+            dropped.append(x)
+            continue
+        if lines.closed[k]:
+            pieces.append((lines, k, 0.0, float(lines.ends[0, k]), True))
+            points.append(x)
+            continue
+        i0 = i1 = i
+        while i0 > 0 and free[i0 - 1]:
+            i0 -= 1
+        while i1 < len(t) - 1 and free[i1 + 1]:
+            i1 += 1
+        ta = -float(lines.ends[1, k]) if i0 == 0 else float(t[i0])
+        tb = float(lines.ends[0, k]) if i1 == len(t) - 1 else float(t[i1])
+        if tb - ta < (0.0 if placed else min_length) or tb <= ta:
+            dropped.append(x)
+            continue
+        pieces.append((lines, k, ta, tb, False))
+        points.append(x[i0 : i1 + 1])
+    return dropped
+
+
+def _pieces_batch(surface: Any, family: str, pieces: list) -> Any:
+    """One batch of trimmed field lines ``(lines, k, ta, tb, closed)``."""
+    from .curves import CurveBatch
+
+    d = surface.domain
+
+    def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        idx = np.asarray(idx)
+        uv = np.empty((len(idx), 2))
+        for c in np.unique(idx):
+            sel = idx == c
+            lines, k = pieces[c][0], pieces[c][1]
+            uv[sel] = lines.uv(k, t[sel])
+        for i in (0, 1):
+            lo, hi = d.range(i)
+            if d.periodic[i]:
+                uv[:, i] = lo + np.mod(uv[:, i] - lo, hi - lo)
+            else:
+                uv[:, i] = np.clip(uv[:, i], lo, hi)
+        return surface.point(uv[:, 0], uv[:, 1]), uv
+
+    return CurveBatch(
+        family,
+        [p[2] for p in pieces],
+        [p[3] for p in pieces],
+        evaluate,
+        closed=[p[4] for p in pieces],
+        surface=surface,
+    )
+
+
 def field_line_batches(
     surface: Any,
     field: Any,
@@ -399,13 +510,18 @@ def field_line_batches(
     family: str = "curvature",
     fill: bool = True,
 ) -> list:
-    """Batches of ``n1`` lines of the field's direction ``which = a`` and ``n2``
-    of ``which = 1 - a``, where ``a`` is chosen so that the first family runs
-    roughly like the ``u1 = const`` lines at the centre of the domain.
+    """Batches of about ``n1`` lines of the field's direction ``which = a`` and
+    ``n2`` of ``which = 1 - a``, where ``a`` is chosen so that the first family
+    runs roughly like the ``u1 = const`` lines at the centre of the domain.
 
-    Seeds: evenly spaced in arc length along a line of the other family
-    through the centre; then, if ``fill``, extra seeds where a part of the
-    surface is farther than ``1.5`` spacings from every line of the family.
+    Evenly spaced lines: the separation ``dsep`` of a family is the length of
+    the line of the other family through the centre divided by ``n``.  First
+    seeds lie ``dsep`` apart along that line; then, if ``fill``, more seeds go
+    where the surface is farther than ``0.9 dsep`` from every line of the
+    family (farthest first, in rounds).  Each line is cut where it comes
+    closer than ``dsep / 2`` (in space) to a line already drawn, keeping the
+    part through its seed, and pieces shorter than ``dsep`` are dropped: lines
+    neither bunch up (at umbilics, say) nor leave gaps, and no stray bits remain.
     """
     from scipy.spatial import cKDTree
 
@@ -419,44 +535,55 @@ def field_line_batches(
     a = 0 if abs(e[0] @ x2) / np.linalg.norm(x2) >= abs(e[1] @ x2) / np.linalg.norm(x2) else 1
     out = []
     d = surface.domain
+    ng = 40
     g1 = (
-        np.linspace(*d.u1, 11)[1:-1]
+        np.linspace(*d.u1, ng + 2)[1:-1]
         if not d.periodic[0]
-        else d.u1[0] + d.span(0) * np.arange(10) / 10
+        else d.u1[0] + d.span(0) * np.arange(ng) / ng
     )
     g2 = (
-        np.linspace(*d.u2, 11)[1:-1]
+        np.linspace(*d.u2, ng + 2)[1:-1]
         if not d.periodic[1]
-        else d.u2[0] + d.span(1) * np.arange(10) / 10
+        else d.u2[0] + d.span(1) * np.arange(ng) / ng
     )
     G = np.stack(np.meshgrid(g1, g2, indexing="ij"), -1).reshape(-1, 2)
+    GP = surface.point(G[:, 0], G[:, 1])
     for which, n in ((a, n1), (1 - a, n2)):
         if n <= 0:
             continue
         transversal = 1 - which  # the line of the other family through the centre
-        seeds = _spread(both, transversal, n)
         L = both.ends[0, transversal] + both.ends[1, transversal]
-        lines = _FieldLines(surface, field, seeds, np.full(n, which), length, stop)
-        batches = [lines.batch(family)]
-        if fill and L > 0:
-            dsep = L / n
-            pts = np.concatenate([lines.samples(k, 400) for k in range(lines.m)])
-            tree = cKDTree(pts)
-            GP = surface.point(G[:, 0], G[:, 1])
+        dsep = (L if L > 0.05 * size else size) / n
+        step = dsep / 8
+        seeds = _spread(both, transversal, n) if L > 0 else np.array([c])
+        lines = _FieldLines(surface, field, seeds, np.full(len(seeds), which), length, stop)
+        pieces: list = []
+        points: list = []
+        _keep_pieces(lines, pieces, points, dsep, 1.5 * dsep, step, placed=True)
+        if fill and points:
             _, str_ = field(surface, G, np.full(len(G), which))
-            extra = 0
-            while extra < n:
-                dist, _ = tree.query(GP)
-                dist = np.where(str_ > 5 * stop, dist, 0.0)
-                k = int(np.argmax(dist))
-                if dist[k] <= 1.5 * dsep:
+            # away from umbilics, where lines stop short anyway
+            alive = np.isfinite(str_) & (str_ > max(50 * stop, 0.1))
+            for _round in range(2):
+                dist, _ = cKDTree(np.concatenate(points)).query(GP)
+                dist = np.where(alive, dist, 0.0)
+                chosen: list[int] = []
+                for k in np.argsort(-dist):
+                    if dist[k] <= 0.9 * dsep or len(chosen) >= n + 4:
+                        break
+                    if all(np.linalg.norm(GP[k] - GP[j]) > 2 * dsep for j in chosen):
+                        chosen.append(int(k))
+                if not chosen:
                     break
-                more = _FieldLines(surface, field, G[k : k + 1], np.array([which]), length, stop)
-                batches.append(more.batch(family))
-                pts = np.concatenate([pts, more.samples(0, 400)])
-                tree = cKDTree(pts)
-                extra += 1
-        out.extend(b for b in batches if len(b))
+                alive[chosen] = False
+                more = _FieldLines(surface, field, G[chosen], np.full(len(chosen), which),
+                                   length, stop)  # fmt: skip
+                dropped = _keep_pieces(more, pieces, points, dsep, dsep, step)
+                if dropped:  # seeds on a dropped line would give it again
+                    near, _ = cKDTree(np.concatenate(dropped)).query(GP)
+                    alive &= near > 0.5 * dsep
+        if pieces:
+            out.append(_pieces_batch(surface, family, pieces))
     return out
 
 

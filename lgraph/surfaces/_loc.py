@@ -462,7 +462,8 @@ def _hp_limit(
 # -- elliptic cone ----------------------------------------------------------------
 def cone_lines(surface: Any, n1: int, n2: int) -> list[CurveBatch]:
     """``n1`` sections by spheres about the vertex (on both nappes) and ``n2``
-    rulings (each a whole line through the vertex, both nappes)."""
+    rulings on each nappe (half-lines from the vertex at evenly spread angles,
+    so both nappes are covered all round)."""
     a, b, h = surface.a, surface.b, surface.height
     rho_max = h * np.sqrt(1 + max(a, b) ** 2)
     rhos = rho_max * np.arange(1, n1 + 1) / max(n1, 1)
@@ -474,7 +475,7 @@ def cone_lines(surface: Any, n1: int, n2: int) -> list[CurveBatch]:
 
     us = spread(
         lambda u: np.stack([a * np.cos(u), b * np.sin(u), np.ones_like(u)], axis=-1),
-        0.0, np.pi, n2, "open",
+        0.0, _TWO_PI, n2, "periodic",
     )  # fmt: skip
 
     def ruling(pr: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -482,6 +483,8 @@ def cone_lines(surface: Any, n1: int, n2: int) -> list[CurveBatch]:
         return np.stack([a * t * np.cos(u), b * t * np.sin(u), t], axis=-1)
 
     pars = np.array([[r_, sg] for sg in (1.0, -1.0) for r_ in rhos]).reshape(-1, 2)
-    return curve_batch(surface, "c1", section, pars, 0.0, _TWO_PI, True) + curve_batch(
-        surface, "c2", ruling, us, -h, h, False, clip=False
+    return (
+        curve_batch(surface, "c1", section, pars, 0.0, _TWO_PI, True)
+        + curve_batch(surface, "c2", ruling, us, 0.0, h, False, clip=False)
+        + curve_batch(surface, "c2", ruling, us, -h, 0.0, False, clip=False)
     )
