@@ -11,21 +11,13 @@ __all__ = ["main", "demo_scene"]
 
 
 def demo_scene():  # noqa: ANN201
-    """The default figure of ``lgraph demo``: the paper's Figure 7.2 when lines of
-    curvature are available, otherwise an ellipsoid and a sphere."""
+    """The figure of ``lgraph demo``: the paper's Figure 7.2, the lines of
+    curvature of a triaxial ellipsoid (as ``gallery/fig_7_2_ellipsoid.py``)."""
     import lgraph as lg
 
     scene = lg.Scene()
-    try:
-        scene.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(14, 18))
-        projector = lg.CentralProjector.from_angles(35, 25, 16)
-        drawing = scene.render(projector)
-    except NotImplementedError:
-        scene = lg.Scene()
-        scene.add(lg.Ellipsoid(3, 2, 1.5), lg.ParameterLines(12, 24))
-        scene.add(lg.Sphere(1), lg.ParameterLines(9, 18), transform=lg.translate(2.5, 1, 1))
-        drawing = scene.render(lg.CentralProjector(eye=(9, -7, 6), target=(0, 0, 0)))
-    return drawing
+    scene.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(14, 18))
+    return scene.render(lg.CentralProjector.from_angles(35, 25, 16))
 
 
 def _demo(args: argparse.Namespace) -> int:

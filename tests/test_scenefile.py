@@ -76,12 +76,22 @@ def same_strokes(a: lg.Drawing, b: lg.Drawing) -> None:
         np.testing.assert_array_equal(s.xy, t.xy)
 
 
-def test_figure_7_2_scene_file_renders_the_python_scene(tmp_path):
+def _gallery_build(stem):
+    import importlib.util
+
+    path = Path(__file__).resolve().parents[1] / "gallery" / f"{stem}.py"
+    spec = importlib.util.spec_from_file_location(f"gallery_{stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.build()
+
+
+def test_figure_7_2_scene_file_renders_the_gallery_script(tmp_path):
+    """The scene file of the paper's Figure 7.2 gives exactly the strokes of
+    gallery/fig_7_2_ellipsoid.py."""
     scene, projector, options = load_scene_file(write(tmp_path, FIG_7_2))
     assert options == {"render": {}, "save": {}}
-    ref = lg.Scene()
-    ref.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(14, 18))
-    ref_proj = lg.CentralProjector.from_angles(35, 25, 16)
+    ref, ref_proj = _gallery_build("fig_7_2_ellipsoid")
     np.testing.assert_allclose(projector.eye, ref_proj.eye)
     got = scene.render(projector)
     same_strokes(got, ref.render(ref_proj))
