@@ -170,14 +170,25 @@ def _ray_cast(tri, o, frame, smin):
 
 
 def test_mixed_scene_matches_brute_force():
+    """Torus, helicoid, ellipsoid and a RuledSurface hiding each other."""
     torus = lg.Torus(2.0, 0.7)
     other = lg.Helicoid(radius=1.2, c=0.25, turns=1.0)
     ell = lg.Ellipsoid(1.0, 0.8, 1.4)
+    # a ruled surface of lgraph's RuledSurface class: a circle with a twisting director
+    circle = lg.Curve(
+        lambda t: np.stack([1.3 * np.cos(t), 1.3 * np.sin(t), 0 * t], -1), 0, 2 * np.pi, closed=True
+    )
+    ruled = lg.RuledSurface(
+        circle,
+        lambda t: np.stack([np.cos(t) * np.sin(t), np.sin(t) * np.sin(t), 1 + 0 * t], -1),
+        u2_range=(-0.8, 0.8),
+    )
     scene = lg.Scene()
     nodes = [
-        (torus, lg.IDENTITY if hasattr(lg, "IDENTITY") else lg.translate(0, 0, 0)),
+        (torus, lg.translate(0, 0, 0)),
         (other, lg.translate(0.5, -3.2, 0.3)),
         (ell, lg.translate(2.6, 1.5, 0.4)),
+        (ruled, lg.translate(-2.4, 1.2, 0.9)),
     ]
     for s, tr in nodes:
         scene.add(s, lg.ParameterLines(6, 8), transform=tr)
