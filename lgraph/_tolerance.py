@@ -50,8 +50,9 @@ FD_STEP_2 = 2e-3
 #: Largest number of curves a single family may request.
 MAX_CURVES = 100_000
 
-#: Largest number of points a single rendered figure may hold.
-MAX_POINTS = 50_000_000
+#: Largest number of sample points of one curve batch (and of the first
+#: sampling of a whole scene): about 1.5 GB of samples, far beyond any figure.
+MAX_POINTS = 20_000_000
 
 #: Grid samples per curve used to find where a curve leaves its drawn patch
 #: (a patch excursion shorter than 1/384 of the parameter range may be missed).

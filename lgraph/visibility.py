@@ -130,12 +130,21 @@ def render(
         raise ValueError(f"Scene.render: tolerance must be a number in (0, 0.1], got {tolerance!r}")
     hidden_style = HIDDEN_STYLE if hidden_style is None else hidden_style
     nodes = scene.nodes
+    batches = [
+        (ni, b)
+        for ni, node in enumerate(nodes)
+        for b in scene.batches(node, local_projector(projector, node.transform))
+        if len(b)
+    ]
+    n_initial = tol.INITIAL_SAMPLES * sum(len(b) for _, b in batches)
+    if n_initial > tol.MAX_POINTS:
+        raise ValueError(
+            f"Scene.render: {sum(len(b) for _, b in batches)} curves need more than "
+            f"{tol.MAX_POINTS} sample points; draw fewer lines"
+        )
     samples: list[Samples] = []
-    for ni, node in enumerate(nodes):
-        local = local_projector(projector, node.transform)
-        for b in scene.batches(node, local):
-            if len(b):
-                samples.append(initial_samples(len(samples), b, ni, node.transform, projector))
+    for ni, b in batches:
+        samples.append(initial_samples(len(samples), b, ni, nodes[ni].transform, projector))
     if not samples:
         return Drawing(strokes=(), page=page)
     if isinstance(projector, CentralProjector):

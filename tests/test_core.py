@@ -227,3 +227,11 @@ def test_parameter_lines_come_from_the_surface():
     for s in d.strokes:
         z = s.xyz[:, 2]
         assert np.all(z > 0) or np.all(z < 0)  # never crosses between the sheets
+
+
+def test_absurd_line_counts_fail_fast_with_a_clear_error():
+    scene = lg.Scene()
+    for _ in range(7):
+        scene.add(lg.Sphere(1), lg.ParameterLines(100_000, 100_000))
+    with pytest.raises(ValueError, match="draw fewer lines"):
+        scene.render(lg.ParallelProjector(direction=(1, 0, 0)))
