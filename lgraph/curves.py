@@ -176,6 +176,9 @@ class CurveBatch:
     surface parameters ``(n, 2)`` (or None for free curves).  Curve ``k`` runs
     over ``t0[k] <= t <= t1[k]``; ``closed[k]`` marks closed curves.  ``own`` is
     how points relate to ``surface`` for visibility (``ON`` or ``CONTOUR``).
+
+    ``curve_family`` (optional) names the family of each curve, overriding
+    ``family`` (one batch may hold both parameter-line families, say).
     """
 
     family: str
@@ -186,6 +189,7 @@ class CurveBatch:
     surface: Any = None
     own: int = ON
     style: Any = None
+    curve_family: tuple[str, ...] | None = None
 
     def __attrs_post_init__(self) -> None:
         object.__setattr__(self, "t0", np.asarray(self.t0, dtype=float).ravel())

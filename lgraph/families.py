@@ -5,7 +5,7 @@ the contour) into :class:`~lgraph.curves.CurveBatch` objects.
 
 >>> import lgraph as lg
 >>> [len(b) for b in lg.ParameterLines(4, 6).batches(lg.Sphere(1), None)]
-[4, 6]
+[10]
 """
 
 from __future__ import annotations
@@ -48,34 +48,33 @@ def parameter_line_batches(
     family1: str = "u1",
     family2: str = "u2",
 ) -> list[CurveBatch]:
-    """Batches for the lines ``u1 = values1[k]`` and ``u2 = values2[k]``."""
+    """One batch with the lines ``u1 = values1[k]`` (family ``family1``) and
+    ``u2 = values2[k]`` (``family2``); empty if there are none."""
     d = surface.domain
-    out = []
-    if len(values1):
-        c1 = np.asarray(values1, float)
-        out.append(
-            CurveBatch.from_uv(
-                surface,
-                family1,
-                np.full(len(c1), d.u2[0]),
-                np.full(len(c1), d.u2[1]),
-                lambda idx, t, c1=c1: np.column_stack([c1[idx], t]),
-                closed=d.periodic[1],
-            )
+    c1 = np.asarray(values1, float).ravel()
+    c2 = np.asarray(values2, float).ravel()
+    n1, n2 = len(c1), len(c2)
+    if not n1 + n2:
+        return []
+    const = np.concatenate([c1, c2])
+
+    def uv(idx: np.ndarray, t: np.ndarray) -> np.ndarray:
+        first = idx < n1  # a line u1 = const, running along u2
+        c = const[idx]
+        return np.column_stack([np.where(first, c, t), np.where(first, t, c)])
+
+    names = (family1,) * n1 + (family2,) * n2
+    return [
+        CurveBatch.from_uv(
+            surface,
+            family1 if n1 else family2,
+            np.concatenate([np.full(n1, d.u2[0]), np.full(n2, d.u1[0])]),
+            np.concatenate([np.full(n1, d.u2[1]), np.full(n2, d.u1[1])]),
+            uv,
+            closed=np.concatenate([np.full(n1, d.periodic[1]), np.full(n2, d.periodic[0])]),
+            curve_family=None if family1 == family2 else names,
         )
-    if len(values2):
-        c2 = np.asarray(values2, float)
-        out.append(
-            CurveBatch.from_uv(
-                surface,
-                family2,
-                np.full(len(c2), d.u1[0]),
-                np.full(len(c2), d.u1[1]),
-                lambda idx, t, c2=c2: np.column_stack([t, c2[idx]]),
-                closed=d.periodic[0],
-            )
-        )
-    return out
+    ]
 
 
 @attrs.frozen
@@ -105,7 +104,7 @@ class Contour(Family):
             return []
         out = []
         for b in surface.contour(projector):
-            out.append(attrs.evolve(b, family="contour", own=CONTOUR))
+            out.append(attrs.evolve(b, family="contour", own=CONTOUR, curve_family=None))
         return out
 
 
@@ -126,7 +125,9 @@ class LinesOfCurvature(Family):
             raise NotImplementedError(
                 f"LinesOfCurvature: {type(surface).__name__} has no lines_of_curvature(n1, n2)"
             )
-        return [attrs.evolve(b, family="curvature") for b in method(self.n1, self.n2)]
+        return [
+            attrs.evolve(b, family="curvature", curve_family=None) for b in method(self.n1, self.n2)
+        ]
 
 
 @attrs.frozen

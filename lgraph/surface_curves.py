@@ -81,7 +81,10 @@ class AsymptoticLines(Family):
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
         closed_form = getattr(surface, "asymptotic_lines", None)
         if closed_form is not None:  # e.g. the rulings of doubly ruled quadrics
-            return [attrs.evolve(b, family="asymptotic") for b in closed_form(self.n1, self.n2)]
+            return [
+                attrs.evolve(b, family="asymptotic", curve_family=None)
+                for b in closed_form(self.n1, self.n2)
+            ]
         return field_line_batches(
             surface, asymptotic_field, self.n1, self.n2, stop=0.01, family="asymptotic"
         )

@@ -77,13 +77,17 @@ def _strokes(
         if rl != rf and s.batch.closed[c] and s.hidden[runs[rf][0]] == s.hidden[runs[rl][0]]:
             joined[rl] = runs[rf]
     skip = set(first_of[c] for c in first_of if last_of[c] in joined)
-    family = s.batch.family
-    style = s.batch.style or node.style_for(family)
+    names = s.batch.curve_family
+    styles: dict[str, Style] = {}
     surface = s.batch.surface
     out = []
     for r, (a, b) in enumerate(runs):
         if r in skip:
             continue
+        family = s.batch.family if names is None else names[int(s.cid[a])]
+        if family not in styles:
+            styles[family] = s.batch.style or node.style_for(family)
+        style = styles[family]
         vis = not bool(s.hidden[a])
         if not vis and not hidden_lines:
             continue
