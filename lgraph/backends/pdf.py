@@ -21,12 +21,13 @@ import os
 import zlib
 from typing import Any
 
+import numpy as np
+
 from ._common import (
     background_rgb,
     check_options,
     check_precision,
     fmt_num,
-    format_points,
     page_runs,
 )
 
@@ -143,24 +144,29 @@ def write_pdf(
         canvas.addLiteral(f"{rgb} rg 0 0 {fmt_num(pw)} {fmt_num(ph)} re f")
     canvas.addLiteral("1 J 1 j")  # round caps and joins
 
+    # One template for the whole page, formatted with all coordinates in one
+    # pass: per stroke "x y m", "x y l" for the rest, "S"; style operators
+    # (which contain no '%') only where the style changes.
+    f = f"%.{precision}f"
+    move, line = f"{f} {f} m\n", f"{f} {f} l\n"
     color = width = dash = None
-    first = f"%.{precision}f %.{precision}f m\n"
+    template: list[str] = []
+    coords: list[np.ndarray] = []
     for pts, stroke in page_runs(drawing):
         style = stroke.style
-        ops = []
         if style.color != color:
             color = style.color
-            ops.append(" ".join(fmt_num(c) for c in color) + " RG")
+            template.append(" ".join(fmt_num(c) for c in color) + " RG\n")
         if style.width != width:
             width = style.width
-            ops.append(f"{fmt_num(width)} w")
+            template.append(f"{fmt_num(width)} w\n")
         if style.dash != dash:
             dash = style.dash
-            ops.append(_dash_op(dash))
-        if ops:
-            canvas.addLiteral("\n".join(ops))
-        x0, y0 = pts[0].tolist()
-        body = format_points(pts[1:], "{} {} l\n", precision)
-        canvas.addLiteral((first % (x0, y0)) + body + "S")
+            template.append(_dash_op(dash) + "\n")
+        template.append(move + line * (len(pts) - 1) + "S\n")
+        coords.append(pts.ravel())
+    if coords:
+        values = tuple(np.concatenate(coords).tolist())
+        canvas.addLiteral("".join(template) % values)
     canvas.showPage()
     canvas.save()
