@@ -28,7 +28,7 @@ from ._own import CONTOUR, OFF
 from ._validate import as_number, count, finite_positive, vector3
 from .curvature import asymptotic_field, field_line_batches, smooth_second_derivatives
 from .curves import CurveBatch, CurveOnSurface
-from .families import Family
+from .families import Family, register_family
 from .surfaces._base import Domain, Surface
 
 if TYPE_CHECKING:
@@ -88,6 +88,9 @@ class AsymptoticLines(Family):
         return field_line_batches(
             surface, asymptotic_field, self.n1, self.n2, stop=0.01, family="asymptotic"
         )
+
+
+register_family("asymptotic_lines", AsymptoticLines)
 
 
 # ---------------------------------------------------------------------------

@@ -60,3 +60,17 @@ def test_hyperboloid_rulings_cross_the_waist_at_even_angles():
     xa, _ = b1.evaluate(np.array([0, 0]), np.array([0.0, 0.5]))
     xb, _ = b2.evaluate(np.array([0, 0]), np.array([0.0, 0.5]))
     assert (xa[1, 2] - xa[0, 2]) * (xb[1, 2] - xb[0, 2]) < 0
+
+
+def test_asymptotic_lines_are_a_registered_family_for_scene_files(tmp_path):
+    from lgraph.scenefile import load_scene_file
+
+    path = tmp_path / "asym.toml"
+    path.write_text(
+        '[projector]\nkind = "parallel"\nazimuth = 30\nelevation = 20\n\n'
+        '[[object]]\nsurface = "hyperbolic_paraboloid"\nparams = { a = 1, b = 1.5 }\n'
+        'families = [{ name = "asymptotic_lines", n1 = 4, n2 = 3 }]\n'
+    )
+    scene, projector, _ = load_scene_file(path)
+    d = scene.render(projector, hidden_lines=True)
+    assert len({tuple(s.xyz[0].round(9)) for s in d.strokes if s.family == "asymptotic"}) >= 7
