@@ -19,7 +19,10 @@ def three_ellipsoids():
     specs = [
         (lg.Ellipsoid(3, 2, 1.5), None),
         (lg.Sphere(1.1), lg.translate(2.4, 1.0, 0.9)),
-        (lg.Ellipsoid(2.5, 0.8, 0.7), lg.translate(0.5, -1.2, 1.4) @ lg.rotate((1, 1, 0), 40)),
+        (
+            lg.Ellipsoid(2.5, 0.8, 0.7),
+            lg.translate(0.5, -1.2, 1.4) @ lg.rotate((1, 1, 0), 40) @ lg.scale(1.0, 1.3, 0.9),
+        ),
     ]
     objects = []
     for surf, t in specs:
