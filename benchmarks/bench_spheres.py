@@ -32,7 +32,11 @@ def lgraph_figure(n: int, path: Path) -> int:
     r = 1.0 if n == 1 else 0.4
     side = int(round(np.sqrt(n)))
     for k in range(n):
-        t = None if n == 1 else lg.translate(k % side - (side - 1) / 2, k // side - (side - 1) / 2, 0)
+        t = (
+            None
+            if n == 1
+            else lg.translate(k % side - (side - 1) / 2, k // side - (side - 1) / 2, 0)
+        )
         scene.add(lg.Sphere(r), lg.ParameterLines(18, 36), transform=t)
     dist = 6.0 if n == 1 else 16.0
     d = scene.render(lg.CentralProjector.from_angles(30, 25, dist))

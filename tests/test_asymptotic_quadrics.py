@@ -18,7 +18,9 @@ SURFACES = [
 def _implicit(surface, x):
     """The quadric's equation written out here (independent of the classes)."""
     if isinstance(surface, lg.HyperboloidOneSheet):
-        return (x[:, 0] / surface.a) ** 2 + (x[:, 1] / surface.b) ** 2 - (x[:, 2] / surface.c) ** 2 - 1
+        return (
+            (x[:, 0] / surface.a) ** 2 + (x[:, 1] / surface.b) ** 2 - (x[:, 2] / surface.c) ** 2 - 1
+        )
     return (x[:, 0] / surface.a) ** 2 - (x[:, 1] / surface.b) ** 2 - x[:, 2]
 
 

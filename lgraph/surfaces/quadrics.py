@@ -497,8 +497,9 @@ class HyperboloidOneSheet(_PatchQuadric):
                 return x, self.uv_of(x)
 
             out.append(
-                CurveBatch("asymptotic", np.full(n, -smax), np.full(n, smax), evaluate,
-                           surface=self)  # fmt: skip
+                CurveBatch(
+                    "asymptotic", np.full(n, -smax), np.full(n, smax), evaluate, surface=self
+                )  # fmt: skip
             )
         return out
 
