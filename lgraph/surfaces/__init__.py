@@ -2,8 +2,7 @@
 
 from ._base import CONTOUR, OFF, ON, Domain, Surface
 from .confocal import ConfocalQuadric, TripleOrthogonalSystem
-from .quadrics import (
-    Ellipsoid,
+from .quadric_patches import (
     EllipticCone,
     EllipticCylinder,
     EllipticParaboloid,
@@ -12,9 +11,8 @@ from .quadrics import (
     HyperboloidOneSheet,
     HyperboloidTwoSheets,
     ParabolicCylinder,
-    Quadric,
-    Sphere,
 )
+from .quadrics import Ellipsoid, Quadric, Sphere
 from .ruled import GeneralCone, GeneralCylinder, RuledSurface, TangentSurface
 
 __all__ = ["CONTOUR", "OFF", "ON", "Domain", "Surface", "Quadric", "Ellipsoid", "Sphere"]

@@ -53,13 +53,8 @@ from ..curves import Curve, CurveBatch
 from ..families import Family, parameter_line_batches
 from ._base import Domain, Surface
 from ._patch import clip_intervals
-from .quadrics import (
-    Ellipsoid,
-    HyperboloidOneSheet,
-    HyperboloidTwoSheets,
-    Quadric,
-    _PatchQuadric,
-)
+from .quadric_patches import HyperboloidOneSheet, HyperboloidTwoSheets, _PatchQuadric
+from .quadrics import Ellipsoid, Quadric
 
 __all__ = ["ConfocalQuadric", "TripleOrthogonalSystem"]
 
@@ -405,7 +400,8 @@ class TripleOrthogonalSystem:
         """Sphere ``r = radius``, cone ``theta = polar_angle`` (degrees, both
         nappes) and half-plane ``phi = azimuth`` (degrees) of spherical
         coordinates, with their intersection circles and arcs (Figure 6.1)."""
-        from .quadrics import EllipticCone, Sphere
+        from .quadric_patches import EllipticCone
+        from .quadrics import Sphere
 
         for name, v in (("radius", radius), ("polar_angle", polar_angle), ("azimuth", azimuth)):
             if not (isinstance(v, (int, float)) and math.isfinite(v)):
