@@ -72,7 +72,7 @@ def view_cosine(surface: Surface, projector: Projector, u1: Any, u2: Any) -> np.
     """``N . w / |w|`` (``N`` unit normal, ``w`` toward the viewer); zero on the contour."""
     u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
     x1, x2 = surface.derivatives(u1, u2)
-    n = np.cross(x1, x2)
+    n = _cross(x1, x2)
     if _is_central(projector):
         w = projector.eye - surface.point(u1, u2)
     else:
@@ -466,6 +466,14 @@ def _fast_derivatives(surface: Surface, u1: np.ndarray, u2: np.ndarray, x: np.nd
     return x1, x2
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a x b`` for ``(..., 3)`` arrays (several times faster than ``np.cross``
+    on the small arrays of a Newton step)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
 def _newton(
     surface: Surface,
     o: np.ndarray,
@@ -506,14 +514,14 @@ def _newton(
         x1, x2 = _fast_derivatives(surface, p[:, 0], p[:, 1], x[keep])
         w = -v[act]
         # solve [x1 x2 w] dz = -F by Cramer's rule
-        c23 = np.cross(x2, w)
+        c23 = _cross(x2, w)
         det = np.einsum("ij,ij->i", x1, c23)
         good = np.abs(det) > 1e-300
         with np.errstate(divide="ignore", invalid="ignore"):
             inv = 1.0 / det
             d1 = -np.einsum("ij,ij->i", F, c23) * inv
-            d2 = -np.einsum("ij,ij->i", x1, np.cross(F, w)) * inv
-            d3 = -np.einsum("ij,ij->i", x1, np.cross(x2, F)) * inv
+            d2 = -np.einsum("ij,ij->i", x1, _cross(F, w)) * inv
+            d3 = -np.einsum("ij,ij->i", x1, _cross(x2, F)) * inv
         # limit the parameter step
         lim = maxstep[act]
         big = np.maximum(np.abs(d1) / lim[:, 0], np.abs(d2) / lim[:, 1])
@@ -568,7 +576,7 @@ def _local_second_root(
     tangential part of ``v``."""
     x1, x2 = surface.derivatives(uv0[:, 0], uv0[:, 1])
     x11, x12, x22 = surface.second_derivatives(uv0[:, 0], uv0[:, 1])
-    n = np.cross(x1, x2)
+    n = _cross(x1, x2)
     n /= np.linalg.norm(n, axis=1, keepdims=True)
     vn = np.einsum("ij,ij->i", v, n)
     g11 = np.einsum("ij,ij->i", x1, x1)
