@@ -208,6 +208,7 @@ class Drawing:
     strokes: tuple[Stroke, ...] = attrs.field(converter=tuple)
     page: Page = attrs.field(default=None, converter=_page)
     background: tuple[float, float, float] | None = attrs.field(default=(1.0, 1.0, 1.0))
+    _cache: dict = attrs.field(factory=dict, init=False, repr=False)
 
     # -- geometry ---------------------------------------------------------
     def bounds(self) -> tuple[float, float, float, float]:
@@ -223,7 +224,13 @@ class Drawing:
         return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
 
     def _layout(self) -> tuple[float, np.ndarray, float, float]:
-        """Scale, offset and page size mapping projection coords to page points."""
+        """Scale, offset and page size mapping projection coords to page points
+        (computed once: a drawing never changes)."""
+        if "layout" not in self._cache:
+            self._cache["layout"] = self._compute_layout()
+        return self._cache["layout"]
+
+    def _compute_layout(self) -> tuple[float, np.ndarray, float, float]:
         x0, y0, x1, y1 = self.bounds()
         w, h = max(x1 - x0, 1e-300), max(y1 - y0, 1e-300)
         if w <= 1e-12 * max(h, 1.0):

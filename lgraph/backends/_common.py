@@ -116,8 +116,11 @@ def page_runs(drawing: Any) -> Iterator[tuple[np.ndarray, Any]]:
     points (breaks) split it.
     """
     for pts, stroke in drawing.page_strokes():
-        for run in finite_runs(pts):
-            yield run, stroke
+        if len(pts) >= 2 and np.isfinite(pts).all():
+            yield pts, stroke  # the common case: one run
+        else:
+            for run in finite_runs(pts):
+                yield run, stroke
 
 
 def positive_finite(writer: str, name: str, value: Any) -> float:
