@@ -123,10 +123,7 @@ class Occlusion:
         if self.nq:
             pt, q = self._quadric_pairs(xy)
             own = np.where(owner[pt] == self.q_node[q], kind[pt], OFF).astype(np.int8)
-            h = quadric_ray_hits(
-                xyz[pt], dirs[pt], smax[pt], own,
-                self.q_A[q], self.q_b[q], self.q_d[q], self.q_eps[q],
-            )  # fmt: skip
+            h = quadric_ray_hits(xyz[pt], dirs[pt], smax[pt], own, *self._coefficients(q))
             out[pt[h]] = True
             if cause is not None:
                 cause[pt[h]] = q[h]
@@ -154,6 +151,14 @@ class Occlusion:
             out[idx] |= surf.hits(o, v, smax[idx], own)
         return out
 
+    def _coefficients(self, q: np.ndarray) -> tuple:
+        """``(A, b, d, eps)`` of quadrics ``q``: gathered per point, or the single
+        quadric's own arrays when all points belong to one (faster products)."""
+        if len(q) and (self.nq == 1 or np.all(q == q[0])):
+            k = int(q[0])
+            return self.q_A[k], self.q_b[k], self.q_d[k], self.q_eps[k]
+        return self.q_A[q], self.q_b[q], self.q_d[q], self.q_eps[q]
+
     def margin(
         self, xyz: np.ndarray, q: np.ndarray, owner: np.ndarray, kind: np.ndarray
     ) -> np.ndarray:
@@ -165,11 +170,12 @@ class Occlusion:
         (``disc >= 0`` and ``qb < 0``).  Used to find flips by regula falsi.
         """
         dirs, _ = self.projector.rays(xyz)
-        A, b, d = self.q_A[q], self.q_b[q], self.q_d[q]
-        Av = np.einsum("nij,nj->ni", A, dirs)
-        qa = np.einsum("ni,ni->n", dirs, Av)
-        qb = 2 * np.einsum("ni,ni->n", xyz, Av) + np.einsum("ni,ni->n", dirs, b)
-        qc = np.einsum("ni,nij,nj->n", xyz, A, xyz) + np.einsum("ni,ni->n", xyz, b) + d
+        A, b, d, _ = self._coefficients(q)  # per point, or one quadric's (broadcast)
+        Av = np.einsum("...ij,...j->...i", A, dirs)
+        qa = np.einsum("...i,...i", dirs, Av)
+        qb = 2 * np.einsum("...i,...i", xyz, Av) + np.einsum("...i,...i", dirs, b)
+        Ax = np.einsum("...ij,...j->...i", A, xyz)
+        qc = np.einsum("...i,...i", xyz, Ax) + np.einsum("...i,...i", xyz, b) + d
         s_sum = -qb / qa  # r1 + r2
         foreign = np.maximum(-qc / qa, np.minimum((qb * qb - 4 * qa * qc) / (4 * qa * qa), s_sum))
         own = owner == self.q_node[q]
