@@ -64,6 +64,8 @@ def _strokes(
     starts = np.concatenate([[0], brk])
     ends = np.concatenate([brk, [n]])
     runs = list(zip(starts.tolist(), ends.tolist()))
+    # projected extent of every run at once (degenerate runs are dropped)
+    extent = np.max(np.maximum.reduceat(s.xy, starts) - np.minimum.reduceat(s.xy, starts), axis=1)
     # closed curves: join the last run with the first when both have one state
     first_of = {}
     last_of = {}
@@ -71,11 +73,11 @@ def _strokes(
         c = int(s.cid[a])
         first_of.setdefault(c, r)
         last_of[c] = r
-    joined: dict[int, tuple[int, int]] = {}
+    joined: dict[int, int] = {}  # last run of a closed curve -> its first run
     for c, rf in first_of.items():
         rl = last_of[c]
         if rl != rf and s.batch.closed[c] and s.hidden[runs[rf][0]] == s.hidden[runs[rl][0]]:
-            joined[rl] = runs[rf]
+            joined[rl] = rf
     skip = set(first_of[c] for c in first_of if last_of[c] in joined)
     names = s.batch.curve_family
     styles: dict[str, Style] = {}
@@ -92,13 +94,15 @@ def _strokes(
         if not vis and not hidden_lines:
             continue
         if r in joined:
-            fa, fb = joined[r]
+            fa, fb = runs[joined[r]]
             sel = np.concatenate([np.arange(a, b), np.arange(fa + 1, fb)])
+            if max(extent[r], extent[joined[r]]) <= min_extent:
+                continue
         else:
+            if b - a < 2 or extent[r] <= min_extent:
+                continue
             sel = slice(a, b)
         xy = s.xy[sel]
-        if len(xy) < 2 or np.ptp(xy, axis=0).max() <= min_extent:
-            continue
         out.append(
             Stroke(
                 xy=xy,
