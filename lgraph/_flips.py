@@ -74,6 +74,10 @@ def _points(all_s: list[Samples], projector: Projector, k: np.ndarray, cid: np.n
             t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """World points and projections of parameters ``t`` on curves ``(k, cid)``;
     one ``evaluate`` call per sample set involved."""
+    if len(k) and np.all(k == k[0]):  # one sample set: no sorting and scattering
+        s = all_s[k[0]]
+        xyz, _, xy = evaluate(s.batch, s.transform, projector, cid, t)
+        return xyz, xy
     xyz = np.empty((len(t), 3))
     xy = np.empty((len(t), 2))
     order = np.argsort(k, kind="stable")
