@@ -120,16 +120,6 @@ def curvature_equation_angle(surface: Any, uv: np.ndarray, duv: np.ndarray) -> n
 UMBILIC_RTOL = 2e-3
 
 
-def _into_domain(uv: np.ndarray, d: Any) -> None:
-    """Wrap periodic parameters into the domain and clip the others (in place)."""
-    for i in (0, 1):
-        lo, hi = d.range(i)
-        if d.periodic[i]:
-            uv[:, i] = lo + np.mod(uv[:, i] - lo, hi - lo)
-        else:
-            uv[:, i] = np.clip(uv[:, i], lo, hi)
-
-
 def smooth_second_derivatives(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
     """``x11, x12, x22`` (analytic when the class has them; the base class's
     fourth-order differences are smooth enough for ODE solvers)."""
@@ -354,7 +344,7 @@ class _FieldLines:
             for c in np.unique(idx):
                 sel = idx == c
                 uv[sel] = self.uv(int(ks[c]), t[sel])
-            _into_domain(uv, d)
+            uv = d.wrap(uv)
             return surface.point(uv[:, 0], uv[:, 1]), uv
 
         return CurveBatch(
@@ -414,9 +404,7 @@ def _line_samples(lines: _FieldLines, step: float) -> list[tuple[np.ndarray, np.
         b = (tb <= lines.ends[1, k]) & (tb > 0)
         t = np.concatenate([-tb[b][::-1], tf[f]])
         uv = np.concatenate([ub[k][b][::-1], uf[k][f]])
-        for i in (0, 1):
-            lo, hi = d.range(i)
-            uv[:, i] = lo + np.mod(uv[:, i] - lo, hi - lo) if d.periodic[i] else uv[:, i]
+        uv = d.wrap(uv, clip=False)
         out.append((t, lines.surface.point(uv[:, 0], uv[:, 1])))
     return out
 
@@ -488,7 +476,7 @@ def _pieces_batch(surface: Any, family: str, pieces: list) -> Any:
             sel = idx == c
             lines, k = pieces[c][0], pieces[c][1]
             uv[sel] = lines.uv(k, t[sel])
-        _into_domain(uv, d)
+        uv = d.wrap(uv)
         return surface.point(uv[:, 0], uv[:, 1]), uv
 
     return CurveBatch(

@@ -45,18 +45,6 @@ __all__ = [
 ]
 
 
-def _wrap_uv(surface: Any, uv: np.ndarray) -> np.ndarray:
-    d = surface.domain
-    uv = np.array(uv, float, copy=True)
-    for i in (0, 1):
-        lo, hi = d.range(i)
-        if d.periodic[i]:
-            uv[..., i] = lo + np.mod(uv[..., i] - lo, hi - lo)
-        else:
-            uv[..., i] = np.clip(uv[..., i], lo, hi)
-    return uv
-
-
 # ---------------------------------------------------------------------------
 # asymptotic lines
 # ---------------------------------------------------------------------------
@@ -156,7 +144,7 @@ def geodesic(surface: Any, uv0: Any, direction: Any, length: float) -> CurveOnSu
     """
     sol, t1 = _geodesic_solution(surface, uv0, direction, float(length))
     return CurveOnSurface(
-        surface, lambda t: _wrap_uv(surface, np.asarray(sol(t))[:2].T), 0.0, max(t1, 1e-12)
+        surface, lambda t: surface.domain.wrap(np.asarray(sol(t))[:2].T), 0.0, max(t1, 1e-12)
     )
 
 
@@ -196,7 +184,7 @@ class Geodesic(Family):
                 out[pos] = np.asarray(fwd(t[pos]))[:2].T
             if (~pos).any() and bwd is not None:
                 out[~pos] = np.asarray(bwd(-t[~pos]))[:2].T
-            return _wrap_uv(surface, out)
+            return surface.domain.wrap(out)
 
         return [CurveBatch.from_uv(surface, "geodesic", [t0], [t1], uv)]
 
@@ -393,7 +381,7 @@ class IntersectionCurve(Family):
                 sel = idx == c
                 z[sel] = curves[c][0](t[sel])
             z, _ = _correct(surface, other, z, steps=4)
-            uv = _wrap_uv(surface, z[:, :2])
+            uv = surface.domain.wrap(z[:, :2])
             return surface.point(uv[:, 0], uv[:, 1]), uv
 
         return [

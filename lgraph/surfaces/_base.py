@@ -83,6 +83,23 @@ class Domain:
             return lo + (hi - lo) * np.arange(n) / n
         return lo + (hi - lo) * np.arange(1, n + 1) / (n + 1)
 
+    def wrap(self, uv: Any, clip: bool = True) -> np.ndarray:
+        """A copy of parameters ``(..., 2)`` with periodic ones wrapped into their
+        range and (with ``clip``) the others clipped to it.
+
+        >>> d = Domain((0, 1), (0, 2), periodic=(False, True))
+        >>> d.wrap([[1.5, 2.5], [-1.0, -0.5]]).tolist()
+        [[1.0, 0.5], [0.0, 1.5]]
+        """
+        uv = np.array(uv, dtype=float, copy=True)
+        for i in (0, 1):
+            lo, hi = self.range(i)
+            if self.periodic[i]:
+                uv[..., i] = lo + np.mod(uv[..., i] - lo, hi - lo)
+            elif clip:
+                uv[..., i] = np.clip(uv[..., i], lo, hi)
+        return uv
+
     def ends(self, i: int) -> np.ndarray:
         """The values of ``u_i`` at which the patch has a boundary curve (both
         ends, unless ``u_i`` is periodic; pole ends excluded)."""

@@ -83,19 +83,6 @@ def view_cosine(surface: Surface, projector: Projector, u1: Any, u2: Any) -> np.
         )
 
 
-def _wrap(surface: Surface, uv: np.ndarray) -> np.ndarray:
-    """Periodic parameters into their range; others clipped to the domain."""
-    d = surface.domain
-    uv = np.array(uv, dtype=float, copy=True)
-    for i in (0, 1):
-        lo, hi = d.range(i)
-        if d.periodic[i]:
-            uv[..., i] = lo + np.mod(uv[..., i] - lo, hi - lo)
-        else:
-            uv[..., i] = np.clip(uv[..., i], lo, hi)
-    return uv
-
-
 def project_to_contour(
     surface: Surface, projector: Projector, uv: np.ndarray, steps: int = 4
 ) -> np.ndarray:
@@ -321,7 +308,7 @@ def _contour_batch(surface: Surface, projector: Projector, curves: list) -> Curv
         for i in (0, 1):
             if not d.periodic[i]:
                 uv[:, i] = np.clip(uv[:, i], *d.range(i))
-        uv = _wrap(surface, uv)
+        uv = surface.domain.wrap(uv)
         return surface.point(uv[:, 0], uv[:, 1]), uv
 
     return CurveBatch(
@@ -531,12 +518,7 @@ def _newton(
         uv[act, 0] += (f * d1)[good]
         uv[act, 1] += (f * d2)[good]
         s[act] += (f * d3)[good]
-        for i in (0, 1):
-            lo, hi = d.range(i)
-            if d.periodic[i]:
-                uv[act, i] = lo + np.mod(uv[act, i] - lo, hi - lo)
-            else:
-                uv[act, i] = np.clip(uv[act, i], lo, hi)
+        uv[act] = d.wrap(uv[act])
         if cell is not None:
             act = act[_in_cell(surface, uv[act], cell[0][act], cell[1][act], 1.5)]
     return uv, s, conv
@@ -666,7 +648,7 @@ def hits(
         ok = np.isfinite(s) & (s > 0) & np.isfinite(uv).all(axis=1)
         cand, uv, s = cand[ok], uv[ok], s[ok]
         if len(cand):
-            uv = _wrap(surface, uv)
+            uv = surface.domain.wrap(uv)
             step = np.tile([[d.span(0) / 8, d.span(1) / 8]], (len(cand), 1))
             uv, s, conv = _newton(surface, o[cand], v[cand], uv, s, step, tol)
             out[cand[conv & (s > s_eps[cand]) & (s < smax[cand])]] = True
