@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import lgraph as lg
+from lgraph.gallery import run_script_main
 
 CAPTION = (
     "Lines of curvature on a ring torus (R = 3, r = 1: meridians and parallels) and on a "
@@ -21,7 +20,4 @@ def build() -> list[tuple[lg.Scene, lg.Projector]]:
 
 
 if __name__ == "__main__":
-    for k, (scene, proj) in enumerate(build()):
-        drawing = scene.render(proj)
-        for suffix in (".pdf", ".png"):
-            drawing.save(f"{Path(__file__).stem}_{k + 1}{suffix}")
+    run_script_main(__file__, build)

@@ -2,18 +2,17 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 import lgraph as lg
+from lgraph.gallery import run_script_main
 
 CAPTION = (
     "Figure 4.1. Left: the general cone x = a + u2 (y(u1) - a) over the closed space curve "
     "y(t) = (2 cos t, 1.4 sin t, 3 + 0.5 sin 3t) with vertex a = 0, 0 <= u2 <= 1. "
-    "Right: the tangent surface x = y(u1) + u2 y'(u1)/|y'(u1)| of the helix "
+    "Middle: the tangent surface x = y(u1) + u2 y'(u1)/|y'(u1)| of the helix "
     "y(t) = (cos t, sin t, 0.3 t), 0 <= t <= 4 pi, 0 <= u2 <= 2.5. "
-    "Down: the general cylinder x = y(u1) + u2 (0, 0, 1) over the non-convex curve "
+    "Right: the general cylinder x = y(u1) + u2 (0, 0, 1) over the non-convex curve "
     "r = 2 + 0.6 cos 3t in the xy-plane, 0 <= u2 <= 2. Parameter lines and contours."
 )
 TAU = 2 * np.pi
@@ -37,24 +36,5 @@ def build() -> list[tuple[lg.Scene, lg.Projector]]:
     return [(cone, view), (tangent, view), (cylinder, view)]
 
 
-def _panels(drawings: list[lg.Drawing]) -> lg.Drawing:
-    """Cone and tangent surface side by side, the cylinder centred below."""
-    import attrs
-
-    (x0, y0, x1, y1), (a0, b0, a1, b1), (c0, d0, c1, d1) = (d.bounds() for d in drawings)
-    gap = 0.1 * max(x1 - x0, a1 - a0)
-    top = d1 - d0 + gap + max(y1 - y0, b1 - b0) / 2  # height of the top row's middle
-    width = (x1 - x0) + gap + (a1 - a0)
-    centres = [((x1 - x0) / 2, top), (width - (a1 - a0) / 2, top), (width / 2, (d1 - d0) / 2)]
-    strokes = []
-    for d, (cx, cy) in zip(drawings, centres):
-        u0, v0, u1, v1 = d.bounds()
-        shift = np.array([cx - (u0 + u1) / 2, cy - (v0 + v1) / 2])
-        strokes += [attrs.evolve(s, xy=s.xy + shift) for s in d.strokes]
-    return lg.Drawing(strokes=strokes)
-
-
 if __name__ == "__main__":
-    drawing = _panels([scene.render(proj) for scene, proj in build()])
-    for suffix in (".pdf", ".png"):
-        drawing.save(Path(__file__).stem + suffix)
+    run_script_main(__file__, build)

@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
-import attrs
 import numpy as np
 
 import lgraph as lg
+from lgraph.gallery import run_script_main
 
 CAPTION = (
     "Figure 4.5. Lines of curvature on two general cones with vertex at the origin: the rulings "
@@ -38,18 +36,5 @@ def build() -> list[tuple[lg.Scene, lg.Projector]]:
     return [(left, view), (right, view)]
 
 
-def _side_by_side(drawings: list[lg.Drawing]) -> lg.Drawing:
-    strokes, x = [], 0.0
-    gap = 0.15 * max(d.bounds()[2] - d.bounds()[0] for d in drawings)
-    for d in drawings:
-        x0, y0, x1, y1 = d.bounds()
-        shift = np.array([x - x0, -(y0 + y1) / 2])
-        strokes += [attrs.evolve(s, xy=s.xy + shift) for s in d.strokes]
-        x += x1 - x0 + gap
-    return lg.Drawing(strokes=strokes)
-
-
 if __name__ == "__main__":
-    drawing = _side_by_side([scene.render(proj) for scene, proj in build()])
-    for suffix in (".pdf", ".png"):
-        drawing.save(Path(__file__).stem + suffix)
+    run_script_main(__file__, build)

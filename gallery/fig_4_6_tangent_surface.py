@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 import lgraph as lg
+from lgraph.gallery import run_script_main
 
 CAPTION = (
     "Figure 4.6. Lines of curvature on the tangent surface x = y(u1) + u2 y'(u1)/|y'(u1)| of "
@@ -29,7 +28,4 @@ def build() -> tuple[lg.Scene, lg.Projector]:
 
 
 if __name__ == "__main__":
-    scene, projector = build()
-    drawing = scene.render(projector)
-    for suffix in (".pdf", ".png"):
-        drawing.save(Path(__file__).stem + suffix)
+    run_script_main(__file__, build)

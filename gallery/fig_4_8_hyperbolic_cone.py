@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 import lgraph as lg
+from lgraph.gallery import run_script_main
 
 CAPTION = (
     "Figure 4.8. Lines of curvature on the cone x^2/a^2 - y^2/b^2 = z^2, a = 1, b = 1.2, in "
@@ -31,7 +30,4 @@ def build() -> tuple[lg.Scene, lg.Projector]:
 
 
 if __name__ == "__main__":
-    scene, projector = build()
-    drawing = scene.render(projector)
-    for suffix in (".pdf", ".png"):
-        drawing.save(Path(__file__).stem + suffix)
+    run_script_main(__file__, build)
