@@ -14,7 +14,7 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -29,7 +29,7 @@ from .projectors import CentralProjector, ParallelProjector, Projector
 if TYPE_CHECKING:
     from .scene import Node, Scene
 
-__all__ = ["render", "local_projector", "classify"]
+__all__ = ["render", "local_projector"]
 
 
 def local_projector(projector: Projector, transform: Transform) -> Projector:
@@ -192,10 +192,3 @@ def render(
     for s in samples:
         strokes.extend(_strokes(s, nodes[s.node], hidden_lines, hidden_style, 1e-12 * diag))
     return Drawing(strokes=strokes, page=page)
-
-
-def classify(scene: Scene, projector: Projector, points: Any) -> np.ndarray:
-    """Hidden flags of arbitrary world points (not on any surface) in ``scene``."""
-    p = np.asarray(points, dtype=float).reshape(-1, 3)
-    vis = Occlusion(scene.nodes, projector)
-    return vis.hidden(p, projector.project(p), np.full(len(p), -1), np.zeros(len(p), np.int8))

@@ -235,3 +235,14 @@ def test_absurd_line_counts_fail_fast_with_a_clear_error():
         scene.add(lg.Sphere(1), lg.ParameterLines(100_000, 100_000))
     with pytest.raises(ValueError, match="draw fewer lines"):
         scene.render(lg.ParallelProjector(direction=(1, 0, 0)))
+
+
+def test_drawing_select_by_family_and_visibility():
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(3, 4))
+    d = scene.render(lg.ParallelProjector(direction=(1, 0.2, 0.3)), hidden_lines=True)
+    hidden_u2 = d.select(family="u2", visible=False)
+    assert len(hidden_u2) and all(s.family == "u2" and not s.visible for s in hidden_u2.strokes)
+    assert len(d.select(family="contour")) + len(d.select(family="u1")) + len(
+        d.select(family="u2")
+    ) == len(d)
