@@ -120,12 +120,6 @@ def curvature_equation_angle(surface: Any, uv: np.ndarray, duv: np.ndarray) -> n
 UMBILIC_RTOL = 2e-3
 
 
-def smooth_second_derivatives(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
-    """``x11, x12, x22`` (analytic when the class has them; the base class's
-    fourth-order differences are smooth enough for ODE solvers)."""
-    return surface.second_derivatives(u1, u2)
-
-
 def principal_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np.ndarray, ...]:
     """Parameter-plane principal direction ``(du1, du2)`` of unit 3-D length for
     the principal curvature ``k1`` (``which == 0``) or ``k2`` (``which == 1``),
@@ -137,7 +131,7 @@ def principal_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np
     g22 = np.einsum("ij,ij->i", x2, x2)
     n = np.cross(x1, x2)
     n /= np.linalg.norm(n, axis=1, keepdims=True)
-    x11, x12, x22 = smooth_second_derivatives(surface, u1, u2)
+    x11, x12, x22 = surface.second_derivatives(u1, u2)
     L11 = np.einsum("ij,ij->i", n, x11)
     L12 = np.einsum("ij,ij->i", n, x12)
     L22 = np.einsum("ij,ij->i", n, x22)

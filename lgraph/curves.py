@@ -93,10 +93,6 @@ class Curve:
     def __call__(self, t: Any) -> np.ndarray:
         return np.asarray(self.func(np.asarray(t, dtype=float)), dtype=float)
 
-    @property
-    def _h(self) -> float:
-        return 1e-3 * (self.t1 - self.t0)
-
     def derivative(self, t: Any) -> np.ndarray:
         """``dx/dt`` (analytic if given, else eighth-order central differences).
 

@@ -26,7 +26,7 @@ from scipy.spatial import cKDTree
 
 from ._own import CONTOUR, OFF
 from ._validate import as_number, count, finite_positive, vector3
-from .curvature import asymptotic_field, field_line_batches, smooth_second_derivatives
+from .curvature import asymptotic_field, field_line_batches
 from .curves import CurveBatch, CurveOnSurface
 from .families import Family, register_family
 from .surfaces._base import Domain, Surface
@@ -89,7 +89,7 @@ def _geodesic_rhs(surface: Any) -> Any:
         u1, u2, a, b = y
         u1a, u2a = np.array([u1]), np.array([u2])
         x1, x2 = surface.derivatives(u1a, u2a)
-        x11, x12, x22 = smooth_second_derivatives(surface, u1a, u2a)
+        x11, x12, x22 = surface.second_derivatives(u1a, u2a)
         acc = (x11 * a * a + 2 * x12 * a * b + x22 * b * b)[0]
         x1, x2 = x1[0], x2[0]
         g11, g12, g22 = x1 @ x1, x1 @ x2, x2 @ x2
