@@ -80,18 +80,29 @@ def initial_samples(
 def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np.ndarray:  # noqa: ANN001
     """Insert new samples into ``s``, each right after sample ``after[i]``
     (``after`` sorted; equal entries keep their given order).  Returns a mask of
-    the new points in the merged arrays."""
-    pos = np.asarray(after) + 1
-    s.cid = np.insert(s.cid, pos, cid)
-    s.t = np.insert(s.t, pos, t)
-    s.xyz = np.insert(s.xyz, pos, xyz, axis=0)
-    s.xy = np.insert(s.xy, pos, xy, axis=0)
+    the new points in the merged arrays.
+
+    Same result as ``np.insert`` on every array, but the order is worked out
+    once and each array costs one gather (``np.take``).
+    """
+    n, k = len(s.t), len(after)
+    new = np.zeros(n + k, dtype=bool)
+    new[np.asarray(after) + 1 + np.arange(k)] = True
+    order = np.empty(n + k, dtype=np.int64)  # merged row -> row of [old; new]
+    order[~new] = np.arange(n)
+    order[new] = np.arange(n, n + k)
+
+    def put(a: np.ndarray, v: np.ndarray) -> np.ndarray:
+        return np.take(np.concatenate([a, np.asarray(v, a.dtype)]), order, axis=0)
+
+    s.cid = put(s.cid, cid)
+    s.t = put(s.t, t)
+    s.xyz = put(s.xyz, xyz)
+    s.xy = put(s.xy, xy)
     if s.uv is not None:
-        s.uv = np.insert(s.uv, pos, uv, axis=0)
+        s.uv = put(s.uv, uv)
     if hidden is not None:
-        s.hidden = np.insert(s.hidden, pos, hidden)
-    new = np.zeros(len(s.t), dtype=bool)
-    new[pos + np.arange(len(pos))] = True
+        s.hidden = put(s.hidden, hidden)
     return new
 
 

@@ -128,11 +128,30 @@ def test_pdf_content_uncompressed(tmp_path: Path) -> None:
     assert data.startswith(b"%PDF-")
     assert b"/MediaBox [ 0 0 100 50 ]" in data
     assert b"1 J 1 j" in data  # round caps and joins
-    assert b"1 0 0 RG" in data and b"1.5 w" in data
-    assert b"10.000 10.000 m\n20.000 20.000 l\n30.000 10.000 l\nS" in data
+    # integer coordinates in 1/1000 pt under a scaling matrix; widths scaled to match
+    assert b"0.001 0 0 0.001 0 0 cm" in data
+    assert b"1 0 0 RG" in data and b"1500 w" in data
+    assert b"10000 10000 m\n20000 20000 l\n30000 10000 l\nS" in data
     assert b"(My figure)" in data and b"(lgraph)" in data
     # Width and colour are set only when they change: the two frame strokes share them.
-    assert data.count(b" RG") == 2 and data.count(b"2 w") == 1
+    assert data.count(b" RG") == 2 and data.count(b"2000 w") == 1
+
+
+@pytest.mark.parametrize(
+    ("precision", "unit", "path"),
+    [(0, None, b"10 10 m\n20 21 l\nS"), (1, b"0.1 0 0 0.1 0 0 cm", b"100 100 m\n200 206 l\nS")],
+)
+def test_pdf_precision_sets_the_integer_unit(
+    tmp_path: Path, precision: int, unit: bytes | None, path: bytes
+) -> None:
+    d = drawing(stroke([[10, 10], [20, 20.6]], style=Style(width=2.0, dash=(3.0, 1.0))))
+    data = d.save(tmp_path / "fig.pdf", compress=False, precision=precision).read_bytes()
+    assert path in data
+    if unit is None:
+        assert b" cm" not in data.split(b"stream")[1].replace(b"1 0 0 1 0 0 cm", b"")
+        assert b"[3 1] 0 d" in data and b"2 w" in data
+    else:
+        assert unit in data and b"[30 10] 0 d" in data and b"20 w" in data
 
 
 def test_pdf_compressed_is_smaller(tmp_path: Path) -> None:
@@ -147,7 +166,7 @@ def test_pdf_compressed_is_smaller(tmp_path: Path) -> None:
 def test_pdf_compression_levels(tmp_path: Path, level: object) -> None:
     data = dashed_drawing().save(tmp_path / "fig.pdf", compress=level).read_bytes()
     assert b"/FlateDecode" in data and b"ASCII85Decode" not in data
-    assert b"[10 10] 0 d" not in data  # the content stream is compressed
+    assert b"[10000 10000] 0 d" not in data  # the content stream is compressed
 
 
 @pytest.mark.parametrize("compress", [-1, 10, 2.0, "yes", None])
@@ -159,13 +178,13 @@ def test_pdf_bad_compress(tmp_path: Path, compress: object) -> None:
 
 def test_pdf_dash_operator(tmp_path: Path) -> None:
     data = dashed_drawing().save(tmp_path / "fig.pdf", compress=False).read_bytes()
-    assert b"[10 10] 0 d" in data
+    assert b"[10000 10000] 0 d" in data  # in units of 1/1000 pt
     solid_after = drawing(
         stroke([[0, 10], [100, 10]], style=Style(width=2.0, dash=(3.0, 1.0))),
         stroke([[0, 20], [100, 20]], style=Style(width=2.0)),
     )
     data = solid_after.save(tmp_path / "fig2.pdf", compress=False).read_bytes()
-    assert b"[3 1] 0 d" in data and b"[] 0 d" in data
+    assert b"[3000 1000] 0 d" in data and b"[] 0 d" in data
 
 
 def test_pdf_background(tmp_path: Path) -> None:
@@ -202,8 +221,8 @@ def test_nonfinite_points_split_the_stroke(tmp_path: Path) -> None:
     write_pdf(d, tmp_path / "fig.pdf", compress=False)
     data = (tmp_path / "fig.pdf").read_bytes()
     assert b"nan" not in data and b"inf" not in data
-    assert b"10.000 10.000 m\n20.000 10.000 l\nS" in data
-    assert b"30.000 10.000 m\n40.000 10.000 l\n50.000 10.000 l\nS" in data
+    assert b"10000 10000 m\n20000 10000 l\nS" in data
+    assert b"30000 10000 m\n40000 10000 l\n50000 10000 l\nS" in data
     write_svg(d, tmp_path / "fig.svg")
     lines = ET.parse(tmp_path / "fig.svg").getroot().findall(SVG_NS + "polyline")
     assert [len(p.get("points").split()) for p in lines] == [2, 3]

@@ -2,8 +2,10 @@
 
 Each stroke's path is formatted as PDF operators in one pass and injected with
 ``Canvas.addLiteral``; reportlab's per-point path API costs about 10 us per
-point, the single formatting pass about 0.4 us.  The page stream is deflated
-with our own filter (chosen zlib level, no ASCII85 layer).
+point, the single formatting pass about 0.1 us.  Coordinates are written as
+integers in units of ``10**-precision`` pt under a scaling matrix (``cm``),
+which formats about three times faster than decimals.  The page stream is
+deflated with our own filter (chosen zlib level, no ASCII85 layer).
 
 >>> import numpy as np, tempfile, os
 >>> from lgraph.drawing import Drawing, Stroke
@@ -35,9 +37,13 @@ __all__ = ["write_pdf"]
 
 _WHITE = (1.0, 1.0, 1.0)
 
-#: zlib level of ``compress=True``: on line-drawing streams level 4 is about
-#: four times faster than zlib's default 6 for a file some 5 % larger.
-_DEFAULT_LEVEL = 4
+#: zlib level of ``compress=True``: on line-drawing streams (integer
+#: coordinates) level 1 is twice as fast as level 4 and four times as fast as
+#: zlib's default 6, for a file about 5 % (7 %) larger.
+_DEFAULT_LEVEL = 1
+
+#: integer coordinates stay below this (the integer limit of PDF readers)
+_INT_LIMIT = 2.0**31 - 1
 
 
 class _Flate:
@@ -71,10 +77,10 @@ def _compress_level(compress: Any) -> int:
     )
 
 
-def _dash_op(dash: tuple[float, ...] | None) -> str:
+def _dash_op(dash: tuple[float, ...] | None, unit: float) -> str:
     if not dash:
         return "[] 0 d"
-    return "[" + " ".join(fmt_num(x) for x in dash) + "] 0 d"
+    return "[" + " ".join(fmt_num(x * unit) for x in dash) + "] 0 d"
 
 
 def write_pdf(
@@ -96,11 +102,14 @@ def write_pdf(
     path : path-like
         File to write (whatever its suffix).
     compress : bool or int, default True
-        Deflate-compress the page content stream: True is zlib level 4 (a
+        Deflate-compress the page content stream: True is zlib level 1 (a
         good speed/size balance for coordinate text), an int 1..9 picks the
         level, False or 0 writes it uncompressed.
     precision : int, default 3
-        Decimals of the coordinates in points (3 is 1/72000 inch).
+        Decimals of the coordinates in points (3 is 1/72000 inch); the
+        coordinates are written as integers in units of ``10**-precision``
+        pt under a ``cm`` scaling matrix, and line widths and dash lengths
+        scaled to match.
     title : str, default "lgraph"
         Document title in the PDF metadata (the creator is always "lgraph").
 
@@ -147,26 +156,34 @@ def write_pdf(
     # One template for the whole page, formatted with all coordinates in one
     # pass: per stroke "x y m", "x y l" for the rest, "S"; style operators
     # (which contain no '%') only where the style changes.
-    f = f"%.{precision}f"
+    runs = list(page_runs(drawing))
+    values = np.concatenate([pts.ravel() for pts, _ in runs]) if runs else np.empty(0)
+    unit = 10.0**precision
+    if len(values) and np.abs(values).max() * unit >= _INT_LIMIT:  # pragma: no cover - huge page
+        unit, f = 1.0, f"%.{precision}f"
+    else:
+        # integers in units of 10**-precision pt under a scaling matrix: about
+        # three times faster to format than decimals, and shorter
+        values, f = np.rint(values * unit).astype(np.int64), "%d"
+        if unit != 1.0:
+            k = fmt_num(1 / unit, precision)
+            canvas.addLiteral(f"{k} 0 0 {k} 0 0 cm")
     move, line = f"{f} {f} m\n", f"{f} {f} l\n"
     color = width = dash = None
     template: list[str] = []
-    coords: list[np.ndarray] = []
-    for pts, stroke in page_runs(drawing):
+    for pts, stroke in runs:
         style = stroke.style
         if style.color != color:
             color = style.color
             template.append(" ".join(fmt_num(c) for c in color) + " RG\n")
         if style.width != width:
             width = style.width
-            template.append(f"{fmt_num(width)} w\n")
+            template.append(f"{fmt_num(width * unit)} w\n")
         if style.dash != dash:
             dash = style.dash
-            template.append(_dash_op(dash) + "\n")
+            template.append(_dash_op(dash, unit) + "\n")
         template.append(move + line * (len(pts) - 1) + "S\n")
-        coords.append(pts.ravel())
-    if coords:
-        values = tuple(np.concatenate(coords).tolist())
-        canvas.addLiteral("".join(template) % values)
+    if runs:
+        canvas.addLiteral("".join(template) % tuple(values.tolist()))
     canvas.showPage()
     canvas.save()
