@@ -72,6 +72,8 @@ class Occlusion:
         self.q_pd = np.all(np.linalg.eigvalsh(self.q_A) > 0, axis=1)
         pad = 1e-9 * (np.ptp(self.q_box[:, [0, 2]]) + np.ptp(self.q_box[:, [1, 3]]) + 1.0)
         self.q_box += np.array([-pad, -pad, pad, pad])
+        if self.nq == 1:
+            return  # no grid: the box test alone
         g = max(1, int(2 * np.sqrt(self.nq)))
         x0, y0 = self.q_box[:, 0].min(), self.q_box[:, 1].min()
         x1, y1 = self.q_box[:, 2].max(), self.q_box[:, 3].max()
@@ -94,6 +96,11 @@ class Occlusion:
 
     def _quadric_pairs(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(point, quadric) index pairs whose projected box contains the point."""
+        if self.nq == 1:
+            x0, y0, x1, y1 = self.q_box[0]
+            x, y = xy[:, 0], xy[:, 1]
+            pt = np.flatnonzero((x >= x0) & (x <= x1) & (y >= y0) & (y <= y1))
+            return pt, np.zeros(len(pt), dtype=np.int64)
         g = self.grid[0]
         cell = self._cell(xy[:, 1], 2) * g + self._cell(xy[:, 0], 1)
         counts = self.cell_count[cell]

@@ -36,8 +36,15 @@ class Samples:
     xyz: np.ndarray  # world
     uv: np.ndarray | None
     xy: np.ndarray
-    hidden: np.ndarray | None = None
-    cause: np.ndarray | None = None  # grouped quadric hiding each sample, or -1
+    hidden: np.ndarray = attrs.field(default=None)
+    cause: np.ndarray = attrs.field(default=None)  # grouped quadric hiding each sample, or -1
+    fresh: np.ndarray = attrs.field(default=None)  # not yet tested for visibility
+
+    def __attrs_post_init__(self) -> None:
+        n = len(self.t)
+        self.hidden = np.zeros(n, dtype=bool)
+        self.cause = np.full(n, -1, dtype=np.int64)
+        self.fresh = np.ones(n, dtype=bool)
 
 
 def evaluate(
@@ -82,8 +89,9 @@ def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np
     (``after`` sorted; equal entries keep their given order).  Returns a mask of
     the new points in the merged arrays.
 
-    Same result as ``np.insert`` on every array, but the order is worked out
-    once and each array costs one gather (``np.take``).
+    New points without ``hidden`` flags are marked fresh (untested).  Same
+    result as ``np.insert`` on every array, but the order is worked out once
+    and each array costs one gather (``np.take``).
     """
     n, k = len(s.t), len(after)
     new = np.zeros(n + k, dtype=bool)
@@ -93,7 +101,8 @@ def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np
     order[new] = np.arange(n, n + k)
 
     def put(a: np.ndarray, v: np.ndarray) -> np.ndarray:
-        return np.take(np.concatenate([a, np.asarray(v, a.dtype)]), order, axis=0)
+        v = np.broadcast_to(np.asarray(v, a.dtype), (k,) + a.shape[1:])
+        return np.take(np.concatenate([a, v]), order, axis=0)
 
     s.cid = put(s.cid, cid)
     s.t = put(s.t, t)
@@ -101,13 +110,18 @@ def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np
     s.xy = put(s.xy, xy)
     if s.uv is not None:
         s.uv = put(s.uv, uv)
-    if hidden is not None:
-        s.hidden = put(s.hidden, hidden)
+    s.hidden = put(s.hidden, False if hidden is None else hidden)
+    s.cause = put(s.cause, -1)
+    s.fresh = put(s.fresh, hidden is None)
     return new
 
 
-def refine(s: Samples, projector: Projector, abs_tol: float) -> None:
+def refine(
+    s: Samples, projector: Projector, abs_tol: float, settled: np.ndarray | None = None
+) -> None:
     """Refine until every chord's midpoint is within ``abs_tol`` of the curve.
+
+    Chords between two ``settled`` samples (a mask) are left as they are.
 
     A chord whose midpoint deviates by ``dev`` is split into
     ``m = ceil(sqrt(dev / abs_tol))`` equal parts at once (the deviation of a
@@ -116,6 +130,8 @@ def refine(s: Samples, projector: Projector, abs_tol: float) -> None:
     """
     span = s.batch.t1 - s.batch.t0
     need = np.ones(len(s.t) - 1, dtype=bool)
+    if settled is not None:
+        need &= ~(settled[1:] & settled[:-1])
     for _ in range(tol.MAX_REFINE_PASSES):
         seg = need & (s.cid[1:] == s.cid[:-1])
         seg &= (s.t[1:] - s.t[:-1]) > 1e-12 * span[s.cid[:-1]]

@@ -1,11 +1,12 @@
 """The render pipeline: sampling, visibility and exact transitions.
 
 1. every node's families give curve batches (in the node's local frame);
-2. all curves are sampled adaptively until each chord deviates from the true
+2. the initial samples are tested against every surface in the scene
+   (vectorized, with a projected bounding-box cull; :mod:`lgraph._occlusion`);
+3. all curves are sampled adaptively until each chord deviates from the true
    projected curve by at most ``tolerance`` times the figure's diagonal
-   (:mod:`lgraph._sampling`);
-3. every sample is tested against every surface in the scene (vectorized,
-   with a projected bounding-box cull; :mod:`lgraph._occlusion`);
+   (:mod:`lgraph._sampling`) -- except, without hidden lines, chords on the
+   far side of their own ellipsoid -- and the new samples are tested;
 4. where visibility flips between two samples, the flip is located to near
    machine precision on the curve parameter (:mod:`lgraph._flips`);
 5. runs of equal visibility become strokes.
@@ -117,6 +118,46 @@ def _strokes(
     return out
 
 
+def _classify(samples: list[Samples], vis: Occlusion) -> None:
+    """Test the fresh samples of every set against the scene, in one call."""
+    fresh = [np.flatnonzero(s.fresh) for s in samples]
+    n = sum(len(f) for f in fresh)
+    if not n:
+        return
+    owners = [owner_arrays(s, len(f)) for s, f in zip(samples, fresh)]
+    cause = np.empty(n, dtype=np.int64)
+    hidden = vis.hidden(
+        np.concatenate([s.xyz[f] for s, f in zip(samples, fresh)]),
+        np.concatenate([s.xy[f] for s, f in zip(samples, fresh)]),
+        np.concatenate([o for o, _ in owners]),
+        np.concatenate([k for _, k in owners]),
+        cause,
+    )
+    start = 0
+    for s, f in zip(samples, fresh):
+        s.hidden[f] = hidden[start : start + len(f)]
+        s.cause[f] = cause[start : start + len(f)]
+        s.fresh[f] = False
+        start += len(f)
+
+
+def _self_hidden(s: Samples, vis: Occlusion) -> np.ndarray | None:
+    """Samples hidden by their own closed quadric (on its far side).
+
+    When hidden lines are not drawn, a chord between two of them is not
+    refined.  A visible piece inside such a chord would have to cross the
+    contour twice within it; for a plane section (parameter lines of
+    ellipsoids) those are its only two contour crossings, so the piece is a
+    near-tangency shorter than the chord.  Chords hidden by *other*
+    surfaces are refined as usual, so that visible pieces peeking out
+    between hidden samples keep being found.
+    """
+    if not vis.nq:
+        return None
+    q = s.cause
+    return (q >= 0) & (vis.q_node[np.maximum(q, 0)] == s.node)
+
+
 def render(
     scene: Scene,
     projector: Projector,
@@ -172,21 +213,11 @@ def render(
         )
     diag = float(np.linalg.norm(allxy.max(axis=0) - allxy.min(axis=0)))
     abs_tol = tolerance * (diag if diag > 0 else 1.0)
-    for s in samples:
-        refine(s, projector, abs_tol)
     vis = Occlusion(nodes, projector)
-    owners = [owner_arrays(s, len(s.t)) for s in samples]
-    cause = np.empty(sum(len(s.t) for s in samples), dtype=np.int64)
-    hidden = vis.hidden(
-        np.concatenate([s.xyz for s in samples]),
-        np.concatenate([s.xy for s in samples]),
-        np.concatenate([o for o, _ in owners]),
-        np.concatenate([k for _, k in owners]),
-        cause,
-    )
-    cuts = np.cumsum([len(s.t) for s in samples])[:-1]
-    for s, h, c in zip(samples, np.split(hidden, cuts), np.split(cause, cuts)):
-        s.hidden, s.cause = h, c
+    _classify(samples, vis)
+    for s in samples:
+        refine(s, projector, abs_tol, None if hidden_lines else _self_hidden(s, vis))
+    _classify(samples, vis)
     locate_flips(samples, vis, projector)
     strokes: list[Stroke] = []
     for s in samples:

@@ -84,6 +84,8 @@ class Transform:
         return n / np.linalg.norm(n, axis=-1, keepdims=True)
 
     def inverse(self) -> Transform:
+        if self.is_identity:
+            return self
         inv = np.linalg.inv(self.matrix)
         return Transform(inv, -inv @ self.offset)
 
