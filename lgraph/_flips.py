@@ -70,33 +70,50 @@ class _Flips:
         return (hi - lo) > tol.BISECTION_RTOL * np.maximum(self.span[sel], np.abs(lo))
 
 
-def _points(all_s: list[Samples], projector: Projector, k: np.ndarray, cid: np.ndarray,
-            t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
-    """World points and projections of parameters ``t`` on curves ``(k, cid)``;
-    one ``evaluate`` call per sample set involved."""
+def _points(
+    all_s: list[Samples],
+    projector: Projector,
+    k: np.ndarray,
+    cid: np.ndarray,
+    t: np.ndarray,
+    project: bool = True,
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """World points and (unless ``project`` is False) projections of parameters
+    ``t`` on curves ``(k, cid)``; one ``evaluate`` call per sample set involved."""
     if len(k) and np.all(k == k[0]):  # one sample set: no sorting and scattering
         s = all_s[k[0]]
-        xyz, _, xy = evaluate(s.batch, s.transform, projector, cid, t)
+        xyz, _, xy = evaluate(s.batch, s.transform, projector if project else None, cid, t)
         return xyz, xy
     xyz = np.empty((len(t), 3))
-    xy = np.empty((len(t), 2))
+    xy = np.empty((len(t), 2)) if project else None
     order = np.argsort(k, kind="stable")
     ks = k[order]
     cuts = np.nonzero(np.diff(ks))[0] + 1
     for sel in np.split(order, cuts):
         if len(sel):
             s = all_s[k[sel[0]]]
-            xyz[sel], _, xy[sel] = evaluate(s.batch, s.transform, projector, cid[sel], t[sel])
+            p = projector if project else None
+            xyz[sel], _, pxy = evaluate(s.batch, s.transform, p, cid[sel], t[sel])
+            if project:
+                xy[sel] = pxy
     return xyz, xy
 
 
 def _regula_falsi(all_s: list[Samples], fl: _Flips, vis: Occlusion,
                   projector: Projector) -> None:  # fmt: skip
-    """Flips caused by an ellipsoid: regula falsi (Illinois) on its continuous
-    hiding margin, a handful of steps instead of dozens.  Each step evaluates
-    the estimate and points just past it on either side, so that near the root
-    the bracket collapses at once.  Results are verified with the full
-    visibility test; brackets that fail stay for :func:`_k_section`."""
+    """Flips caused by an ellipsoid: root finding on its continuous hiding
+    margin ``f`` (safeguarded, a handful of steps instead of dozens).
+
+    Each step evaluates ``f`` at an estimate ``u`` and at ``u -+ h``; the
+    bracket shrinks to the sub-interval where ``f`` changes sign, and the next
+    estimate is the root of the parabola through the three values (Newton's
+    step when ``h`` is too small for a clean second difference), or the
+    secant of the bracket's ends when that root leaves the bracket.  ``h``
+    follows the size of the last correction, so that once the estimates
+    converge the three points straddle the root and the bracket collapses
+    on both sides; at the end ``h`` is half the target width.  Results are
+    verified with the full visibility test; brackets that fail stay for
+    :func:`_k_section`."""
     if not vis.nq or not len(fl):
         return
     hid_end = np.where(fl.hlo, fl.f, fl.f + 1)
@@ -119,22 +136,26 @@ def _regula_falsi(all_s: list[Samples], fl: _Flips, vis: Occlusion,
     idx, fa, fb, q = idx[good], fa[good], fb[good], q[idx][good]
     a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
     b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
-    kept = np.zeros(len(idx), np.int8)
-    span = fl.span[idx]
+    # ``h`` is at least half the target width, and a clean second difference
+    # needs it well above rounding (relative to the bracket's scale)
+    scale = np.maximum(fl.span[idx], np.maximum(np.abs(a), np.abs(b)))
+    h_min = 0.5 * tol.BISECTION_RTOL * scale
+    h_quad = 1e-6 * scale
+    u = a + _secant(fa, fb) * (b - a)
+    h = 1e-2 * np.abs(b - a)
     rows3 = np.array([-1.0, 0.0, 1.0])
     for _ in range(tol.BISECTION_MAX_STEPS):
         g = np.nonzero(fl.open(idx, np.minimum(a, b), np.maximum(a, b)))[0]
         if not len(g):
             break
-        w = b[g] - a[g]  # signed: from the visible end to the hidden end
-        with np.errstate(divide="ignore", invalid="ignore"):
-            u = -fa[g] / (fb[g] - fa[g])  # position of the secant root in the bracket
-        u = np.where((u > 0) & (u < 1), u, 0.5)
-        step = 0.5 * tol.BISECTION_RTOL * np.maximum(span[g], np.abs(a[g])) / np.abs(w)
-        tt = a[g, None] + np.clip(u[:, None] + rows3 * step[:, None], 0.0, 1.0) * w[:, None]
+        ag, bg, ug = a[g], b[g], u[g]
+        sgn = np.sign(bg - ag)  # from the visible end toward the hidden end
+        room = np.minimum(np.abs(ug - ag), np.abs(bg - ug))  # keep the three points inside
+        hg = np.minimum(np.maximum(h[g], h_min[g]), room)
+        tt = ug[:, None] + (sgn * hg)[:, None] * rows3
         ig = idx[g]
         xyz, _ = _points(all_s, projector, np.repeat(fl.k[ig], 3), np.repeat(fl.cid[ig], 3),
-                         tt.ravel())  # fmt: skip
+                         tt.ravel(), project=False)  # fmt: skip
         m = vis.margin(xyz, np.repeat(q[g], 3), np.repeat(fl.owner[ig], 3),
                        np.repeat(fl.kind[ig], 3)).reshape(-1, 3)  # fmt: skip
         hid = m > 0
@@ -144,11 +165,18 @@ def _regula_falsi(all_s: list[Samples], fl: _Flips, vis: Occlusion,
         b[g[new_b]], fb[g[new_b]] = tt[rows[new_b], first[new_b]], m[rows[new_b], first[new_b]]
         ia = first[new_a] - 1
         a[g[new_a]], fa[g[new_a]] = tt[rows[new_a], ia], m[rows[new_a], ia]
-        # Illinois: an end kept twice in a row has its value halved
-        only_a, only_b = new_a & ~new_b, new_b & ~new_a
-        fb[g[only_a & (kept[g] == 2)]] *= 0.5
-        fa[g[only_b & (kept[g] == 1)]] *= 0.5
-        kept[g] = np.where(only_a, 2, np.where(only_b, 1, 0))
+        # next estimate: root of the parabola (or line) through the three values
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            c1 = (m[:, 2] - m[:, 0]) / (2 * hg)
+            c2 = np.where(hg >= h_quad[g], (m[:, 2] - 2 * m[:, 1] + m[:, 0]) / (2 * hg * hg), 0.0)
+            disc = np.sqrt(np.maximum(c1 * c1 - 4 * c2 * m[:, 1], 0.0))
+            step = -2 * m[:, 1] / (c1 + np.copysign(disc, c1))
+            nxt = ug + sgn * step
+            ag, bg = a[g], b[g]
+            inside = (nxt - ag) * (nxt - bg) < 0
+            fallback = ag + _secant(fa[g], fb[g]) * (bg - ag)
+        u[g] = np.where(inside, nxt, fallback)
+        h[g] = np.where(inside, 1e-4 * np.abs(step), 1e-2 * np.abs(bg - ag))
     # verify with the full test; accepted brackets replace the originals
     kk, cc = np.tile(fl.k[idx], 2), np.tile(fl.cid[idx], 2)
     xyz, xy = _points(all_s, projector, kk, cc, np.concatenate([a, b]))
@@ -158,6 +186,14 @@ def _regula_falsi(all_s: list[Samples], fl: _Flips, vis: Occlusion,
     sel, hl = idx[ok], fl.hlo[idx[ok]]
     fl.lo[sel] = np.where(hl, b[ok], a[ok])
     fl.hi[sel] = np.where(hl, a[ok], b[ok])
+
+
+def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
+    """Where the secant through ``(0, fa)`` and ``(1, fb)`` crosses zero (0.5
+    when that is not strictly inside)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = -fa / (fb - fa)
+    return np.where((r > 0) & (r < 1), r, 0.5)
 
 
 def _k_section(all_s: list[Samples], fl: _Flips, vis: Occlusion,

@@ -48,8 +48,14 @@ class Samples:
 
 
 def evaluate(
-    batch: CurveBatch, transform: Transform, projector: Projector, cid: np.ndarray, t: np.ndarray
+    batch: CurveBatch,
+    transform: Transform,
+    projector: Projector | None,
+    cid: np.ndarray,
+    t: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+    """World points, parameters (or None) and projections of curves ``cid`` at
+    ``t``; without a projector the projections are None."""
     xyz, uv = batch.evaluate(cid, t)
     xyz = np.asarray(xyz, dtype=float).reshape(-1, 3)
     if not transform.is_identity:
@@ -57,7 +63,7 @@ def evaluate(
     return (
         xyz,
         (None if uv is None else np.asarray(uv, float).reshape(-1, 2)),
-        projector.project(xyz),
+        None if projector is None else projector.project(xyz),
     )
 
 

@@ -58,61 +58,54 @@ def _strokes(
 ) -> list[Stroke]:
     """Split samples into runs of equal visibility, one stroke per run.
 
-    Runs whose projection is smaller than ``min_extent`` (degenerate curves such
-    as a parameter circle through a cone's vertex) are dropped."""
+    The last run of a closed curve joins its first when both have one state.
+    Runs whose projection is smaller than ``min_extent`` (degenerate curves
+    such as a parameter circle through a cone's vertex) are dropped."""
     n = len(s.t)
-    brk = np.nonzero((s.cid[1:] != s.cid[:-1]) | (s.hidden[1:] != s.hidden[:-1]))[0] + 1
+    brk = np.flatnonzero((s.cid[1:] != s.cid[:-1]) | (s.hidden[1:] != s.hidden[:-1])) + 1
     starts = np.concatenate([[0], brk])
     ends = np.concatenate([brk, [n]])
-    runs = list(zip(starts.tolist(), ends.tolist()))
-    # projected extent of every run at once (degenerate runs are dropped)
+    # projected extent of every run at once
     extent = np.max(np.maximum.reduceat(s.xy, starts) - np.minimum.reduceat(s.xy, starts), axis=1)
-    # closed curves: join the last run with the first when both have one state
-    first_of = {}
-    last_of = {}
-    for r, (a, _b) in enumerate(runs):
-        c = int(s.cid[a])
-        first_of.setdefault(c, r)
-        last_of[c] = r
-    joined: dict[int, int] = {}  # last run of a closed curve -> its first run
-    for c, rf in first_of.items():
-        rl = last_of[c]
-        if rl != rf and s.batch.closed[c] and s.hidden[runs[rf][0]] == s.hidden[runs[rl][0]]:
-            joined[rl] = rf
-    skip = set(first_of[c] for c in first_of if last_of[c] in joined)
+    run_cid, run_hidden = s.cid[starts], s.hidden[starts]
+    new_curve = run_cid[1:] != run_cid[:-1]
+    first = np.flatnonzero(np.concatenate([[True], new_curve]))  # first run of each curve
+    last = np.flatnonzero(np.concatenate([new_curve, [True]]))
+    join = (last != first) & s.batch.closed[run_cid[first]]
+    join &= run_hidden[first] == run_hidden[last]
+    partner = np.full(len(starts), -1)  # last run of a closed curve -> its first run
+    partner[last[join]] = first[join]
+    keep = np.ones(len(starts), dtype=bool)
+    keep[first[join]] = False  # drawn with the curve's last run
+    if not hidden_lines:
+        keep &= ~run_hidden
+    joined = partner >= 0
+    size = np.where(joined, np.maximum(extent, extent[partner]), extent)
+    keep &= (size > min_extent) & (joined | (ends - starts >= 2))
     names = s.batch.curve_family
-    styles: dict[str, Style] = {}
     surface = s.batch.surface
+    styles: dict[str, Style] = {}
     out = []
-    for r, (a, b) in enumerate(runs):
-        if r in skip:
-            continue
-        family = s.batch.family if names is None else names[int(s.cid[a])]
+    for r in np.flatnonzero(keep).tolist():
+        a, b, c = int(starts[r]), int(ends[r]), int(run_cid[r])
+        family = s.batch.family if names is None else names[c]
         if family not in styles:
             styles[family] = s.batch.style or node.style_for(family)
-        style = styles[family]
-        vis = not bool(s.hidden[a])
-        if not vis and not hidden_lines:
-            continue
-        if r in joined:
-            fa, fb = runs[joined[r]]
+        vis = not run_hidden[r]
+        if joined[r]:
+            fa, fb = int(starts[partner[r]]), int(ends[partner[r]])
             sel = np.concatenate([np.arange(a, b), np.arange(fa + 1, fb)])
-            if max(extent[r], extent[joined[r]]) <= min_extent:
-                continue
         else:
-            if b - a < 2 or extent[r] <= min_extent:
-                continue
             sel = slice(a, b)
-        xy = s.xy[sel]
         out.append(
             Stroke(
-                xy=xy,
+                xy=s.xy[sel],
                 xyz=s.xyz[sel],
                 uv=None if s.uv is None else s.uv[sel],
                 visible=vis,
                 family=family,
                 surface=surface,
-                style=style if vis else hidden_style,
+                style=styles[family] if vis else hidden_style,
             )
         )
     return out
