@@ -68,14 +68,19 @@ def evaluate(
 
 
 def seg_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Distance from points ``p`` to segments ``ab`` (all (n, 2))."""
-    ab = b - a
-    ap = p - a
-    den = np.einsum("ij,ij->i", ab, ab)
+    """Distance from points ``p`` to segments ``ab`` (all (n, 2)).
+
+    >>> p = np.array([[1.0, 1.0], [3.0, 0.0]])
+    >>> seg_distance(p, np.zeros((2, 2)), np.array([[2.0, 0.0], [2.0, 0.0]]))
+    array([1., 1.])
+    """
+    abx, aby = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1]
+    apx, apy = p[:, 0] - a[:, 0], p[:, 1] - a[:, 1]
+    den = abx * abx + aby * aby
     with np.errstate(invalid="ignore", divide="ignore"):
-        s = np.where(den > 0, np.einsum("ij,ij->i", ap, ab) / den, 0.0)
-    s = np.clip(s, 0.0, 1.0)
-    return np.linalg.norm(ap - s[:, None] * ab, axis=1)
+        s = np.where(den > 0, (apx * abx + apy * aby) / den, 0.0)
+    np.clip(s, 0.0, 1.0, out=s)
+    return np.hypot(apx - s * abx, apy - s * aby)
 
 
 def initial_samples(
@@ -129,19 +134,29 @@ def refine(
 
     Chords between two ``settled`` samples (a mask) are left as they are.
 
-    A chord whose midpoint deviates by ``dev`` is split into
-    ``m = ceil(sqrt(dev / abs_tol))`` equal parts at once (the deviation of a
-    smooth curve shrinks with the square of the chord), so a pass or two
-    usually suffices; the new chords are tested again.
+    A chord whose deviation is ``dev`` is split into ``m = ceil(sqrt(dev /
+    abs_tol))`` equal parts at once (the deviation of a smooth curve shrinks
+    with the square of the chord).  The first split uses the deviation
+    predicted by the second differences of the samples (uniformly spaced on
+    each curve, as :func:`initial_samples` makes them), at no evaluation;
+    then every chord is checked at its midpoint and the ones that fail are
+    split again, until none fails.
     """
     span = s.batch.t1 - s.batch.t0
-    need = np.ones(len(s.t) - 1, dtype=bool)
+    check = s.cid[1:] == s.cid[:-1]
     if settled is not None:
-        need &= ~(settled[1:] & settled[:-1])
+        check &= ~(settled[1:] & settled[:-1])
+    dev = _predicted_deviation(s.xy, s.cid)
+    split = np.flatnonzero(check & (dev > abs_tol))
+    if len(split):
+        new = _split(s, projector, split, dev[split], abs_tol)
+        flag = np.ones(len(new), dtype=bool)  # sub-chords of checked chords
+        flag[~new] = np.append(check, False)
+        check = flag[:-1]
     for _ in range(tol.MAX_REFINE_PASSES):
-        seg = need & (s.cid[1:] == s.cid[:-1])
+        seg = check & (s.cid[1:] == s.cid[:-1])
         seg &= (s.t[1:] - s.t[:-1]) > 1e-12 * span[s.cid[:-1]]
-        idx = np.nonzero(seg)[0]
+        idx = np.flatnonzero(seg)
         if not len(idx):
             return
         tm = 0.5 * (s.t[idx] + s.t[idx + 1])
@@ -150,23 +165,48 @@ def refine(
         split = ~(dev <= abs_tol)  # also splits where dev is NaN
         if not split.any():
             return
-        idx, dev = idx[split], dev[split]
-        with np.errstate(invalid="ignore"):
-            m = np.ceil(1.05 * np.sqrt(dev / abs_tol))
-        m = np.clip(np.nan_to_num(m, nan=2.0), 2, tol.MAX_SPLIT).astype(np.int64)
-        after = np.repeat(idx, m - 1)
-        j = np.arange(len(after)) - np.repeat(np.cumsum(m - 1) - (m - 1), m - 1) + 1
-        frac = j / np.repeat(m, m - 1)
-        t = s.t[after] + frac * (s.t[after + 1] - s.t[after])
-        c = s.cid[after]
-        xyz, uv, xy = evaluate(s.batch, s.transform, projector, c, t)
-        new = merge(s, after, c, t, xyz, uv, xy)
-        need = new[:-1] | new[1:]
-        if len(s.t) > tol.MAX_POINTS:
-            raise ValueError(
-                f"render: more than {tol.MAX_POINTS} points needed; lower the number of "
-                "lines or raise the tolerance"
-            )
+        new = _split(s, projector, idx[split], dev[split], abs_tol)
+        check = new[:-1] | new[1:]
+
+
+def _predicted_deviation(xy: np.ndarray, cid: np.ndarray) -> np.ndarray:
+    """Deviation of every chord from its curve predicted by the second
+    differences at its two ends (``|p[i-1] - 2 p[i] + p[i+1]| / 8`` across the
+    secant ``p[i+1] - p[i-1]``); 0 where there is none (curve ends)."""
+    dev = np.zeros(max(len(xy) - 1, 0))
+    if len(xy) < 3:
+        return dev
+    d2 = xy[:-2] - 2 * xy[1:-1] + xy[2:]
+    sec = xy[2:] - xy[:-2]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        perp = np.abs(d2[:, 0] * sec[:, 1] - d2[:, 1] * sec[:, 0]) / (8 * np.hypot(*sec.T))
+    perp[~((cid[:-2] == cid[1:-1]) & (cid[1:-1] == cid[2:]) & np.isfinite(perp))] = 0.0
+    dev[1:] = perp  # chord j from its first end, sample j
+    np.maximum(dev[:-1], perp, out=dev[:-1])  # and from its second end, sample j + 1
+    return dev
+
+
+def _split(
+    s: Samples, projector: Projector, idx: np.ndarray, dev: np.ndarray, abs_tol: float
+) -> np.ndarray:
+    """Split chords ``idx`` (deviation ``dev``) into equal parts in ``t``;
+    returns the mask of new samples."""
+    with np.errstate(invalid="ignore"):
+        m = np.ceil(1.05 * np.sqrt(dev / abs_tol))
+    m = np.clip(np.nan_to_num(m, nan=2.0), 2, tol.MAX_SPLIT).astype(np.int64)
+    after = np.repeat(idx, m - 1)
+    j = np.arange(len(after)) - np.repeat(np.cumsum(m - 1) - (m - 1), m - 1) + 1
+    frac = j / np.repeat(m, m - 1)
+    t = s.t[after] + frac * (s.t[after + 1] - s.t[after])
+    c = s.cid[after]
+    xyz, uv, xy = evaluate(s.batch, s.transform, projector, c, t)
+    new = merge(s, after, c, t, xyz, uv, xy)
+    if len(s.t) > tol.MAX_POINTS:
+        raise ValueError(
+            f"render: more than {tol.MAX_POINTS} points needed; lower the number of "
+            "lines or raise the tolerance"
+        )
+    return new
 
 
 def owner_arrays(s: Samples, n: int) -> tuple[np.ndarray, np.ndarray]:

@@ -186,10 +186,10 @@ class CentralProjector(Projector):
 
     def rays(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         w = self.eye - np.asarray(points, dtype=float)
-        n = np.linalg.norm(w, axis=-1)
+        n = np.sqrt(np.einsum("...i,...i", w, w))
         with np.errstate(divide="ignore", invalid="ignore"):
-            d = w / n[..., None]
-        return d, n
+            w /= n[..., None]
+        return w, n
 
     def view_vectors(self, points: np.ndarray) -> np.ndarray:
         return self.eye - np.asarray(points, dtype=float)

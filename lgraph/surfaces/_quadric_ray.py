@@ -56,8 +56,6 @@ def quadric_ray_hits(
     Av = np.einsum("...ij,...j->...i", A, v) if A.ndim == 3 else v @ A
     qa = _dot(v, Av)
     qb = 2 * _dot(o, Av) + _dot(v, b)
-    Ao = np.einsum("...ij,...j->...i", A, o) if A.ndim == 3 else o @ A
-    qc = _dot(o, Ao) + _dot(o, b) + d
     hit = np.zeros(o.shape[:-1], dtype=bool)
 
     def accept(s: np.ndarray, mask: np.ndarray, lower: np.ndarray | float) -> np.ndarray:
@@ -76,6 +74,8 @@ def quadric_ray_hits(
         # then it does not hide its own contour either.
         off = (own != ON) & (own != CONTOUR)
         if off.any():
+            Ao = np.einsum("...ij,...j->...i", A, o) if A.ndim == 3 else o @ A
+            qc = _dot(o, Ao) + _dot(o, b) + d
             disc = qb * qb - 4 * qa * qc
             real = off & (disc >= 0)
             sq = np.sqrt(np.where(real, disc, 0.0))
