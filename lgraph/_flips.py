@@ -128,10 +128,9 @@ def _regula_falsi(all_s: list[Samples], fl: _Flips, vis: Occlusion,
     if not len(idx):
         return
     xyz_all = np.concatenate([s.xyz for s in all_s])
-    xyz_a = xyz_all[offset[fl.k[idx]] + vis_end[idx]]
-    xyz_b = xyz_all[offset[fl.k[idx]] + hid_end[idx]]
-    fa = vis.margin(xyz_a, q[idx], fl.owner[idx], fl.kind[idx])
-    fb = vis.margin(xyz_b, q[idx], fl.owner[idx], fl.kind[idx])
+    rows = offset[np.tile(fl.k[idx], 2)] + np.concatenate([vis_end[idx], hid_end[idx]])
+    fa, fb = np.split(vis.margin(xyz_all[rows], np.tile(q[idx], 2), np.tile(fl.owner[idx], 2),
+                                 np.tile(fl.kind[idx], 2)), 2)  # fmt: skip
     good = (fa <= 0) & (fb > 0)
     idx, fa, fb, q = idx[good], fa[good], fb[good], q[idx][good]
     a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end

@@ -178,12 +178,15 @@ class Occlusion:
         """
         dirs, _ = self.projector.rays(xyz)
         A, b, d, _ = self._coefficients(q)  # per point, or one quadric's (broadcast)
-        Av = np.einsum("...ij,...j->...i", A, dirs)
+        Av = np.einsum("...ij,...j->...i", A, dirs) if A.ndim == 3 else dirs @ A
         qa = np.einsum("...i,...i", dirs, Av)
         qb = 2 * np.einsum("...i,...i", xyz, Av) + np.einsum("...i,...i", dirs, b)
-        Ax = np.einsum("...ij,...j->...i", A, xyz)
-        qc = np.einsum("...i,...i", xyz, Ax) + np.einsum("...i,...i", xyz, b) + d
         s_sum = -qb / qa  # r1 + r2
-        foreign = np.maximum(-qc / qa, np.minimum((qb * qb - 4 * qa * qc) / (4 * qa * qa), s_sum))
         own = owner == self.q_node[q]
-        return np.where(own, np.where(kind == CONTOUR, -1.0, s_sum), foreign)
+        out = np.where(kind == CONTOUR, -1.0, s_sum)
+        if own.all():
+            return out
+        Ax = np.einsum("...ij,...j->...i", A, xyz) if A.ndim == 3 else xyz @ A
+        qc = np.einsum("...i,...i", xyz, Ax) + np.einsum("...i,...i", xyz, b) + d
+        foreign = np.maximum(-qc / qa, np.minimum((qb * qb - 4 * qa * qc) / (4 * qa * qa), s_sum))
+        return np.where(own, out, foreign)
