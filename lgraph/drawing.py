@@ -260,10 +260,13 @@ class Drawing:
         """
         scale, offset, _, _ = self._layout()
         order = sorted(range(len(self.strokes)), key=lambda i: self.strokes[i].visible)
-        for i in order:
-            s = self.strokes[i]
-            if len(s.xy) >= 2:
-                yield s.xy * scale + offset, s
+        strokes = [self.strokes[i] for i in order if len(self.strokes[i].xy) >= 2]
+        if not strokes:
+            return
+        # one affine map for all points, then views per stroke
+        pts = np.concatenate([s.xy for s in strokes]) * scale + offset
+        cuts = np.cumsum([len(s.xy) for s in strokes[:-1]]).tolist()
+        yield from zip(np.split(pts, cuts), strokes)
 
     # -- selection --------------------------------------------------------
     def select(self, *, family: str | None = None, visible: bool | None = None) -> Drawing:

@@ -115,12 +115,14 @@ def page_runs(drawing: Any) -> Iterator[tuple[np.ndarray, Any]]:
     A stroke whose points are all finite gives exactly one run; NaN or inf
     points (breaks) split it.
     """
-    for pts, stroke in drawing.page_strokes():
-        if len(pts) >= 2 and np.isfinite(pts).all():
-            yield pts, stroke  # the common case: one run
-        else:
-            for run in finite_runs(pts):
-                yield run, stroke
+    items = list(drawing.page_strokes())
+    if items and np.isfinite(np.concatenate([pts for pts, _ in items])).all():
+        # the common case: every stroke is one run (checked at once)
+        yield from ((pts, stroke) for pts, stroke in items if len(pts) >= 2)
+        return
+    for pts, stroke in items:
+        for run in finite_runs(pts):
+            yield run, stroke
 
 
 def positive_finite(writer: str, name: str, value: Any) -> float:
