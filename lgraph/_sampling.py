@@ -1,15 +1,16 @@
 """Adaptive sampling of curve batches (the renderer's first stage).
 
-Samples of one batch live in flat arrays sorted by (curve index, t); every
-chord's midpoint is kept within the chord tolerance of the true projected
-curve.
+All samples of a scene live in one set of flat arrays sorted by (curve, t):
+the curves of every batch of every node get consecutive global ids, so each
+stage of the renderer is a handful of numpy calls for the whole scene
+whatever the number of batches.  Every chord's midpoint is kept within the
+chord tolerance of the true projected curve.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
-import attrs
 import numpy as np
 
 from . import _tolerance as tol
@@ -20,51 +21,86 @@ from .surfaces._base import OFF
 if TYPE_CHECKING:
     from .curves import CurveBatch
 
-__all__ = ["Samples", "evaluate", "initial_samples", "merge", "refine", "owner_arrays"]
+__all__ = ["Part", "Samples", "merge", "refine"]
 
 
-@attrs.define
-class Samples:
-    """Samples of one batch: flat arrays sorted by (curve index, t)."""
+class Part(NamedTuple):
+    """One curve batch of one scene node; its curves are ``first ...``."""
 
-    entry: int
     batch: CurveBatch
     node: int
     transform: Transform
-    cid: np.ndarray
-    t: np.ndarray
-    xyz: np.ndarray  # world
-    uv: np.ndarray | None
-    xy: np.ndarray
-    hidden: np.ndarray = attrs.field(default=None)
-    cause: np.ndarray = attrs.field(default=None)  # grouped quadric hiding each sample, or -1
-    fresh: np.ndarray = attrs.field(default=None)  # not yet tested for visibility
+    first: int
 
-    def __attrs_post_init__(self) -> None:
+
+class Samples:
+    """The samples of all curves of a scene, sorted by (curve id, t).
+
+    Per curve: ``part`` (index into ``parts``), ``t0``, ``t1``, ``closed``,
+    ``owner`` (node of its surface, or -1) and ``kind`` (ownership code of the
+    ray tests).  Per sample: ``cid``, ``t``, ``xyz`` (world), ``uv`` (NaN for
+    curves without parameters), ``xy`` (projection), ``hidden``, ``cause``
+    (grouped quadric hiding it, or -1) and ``fresh`` (not yet tested).
+    """
+
+    def __init__(
+        self, batches: list[tuple[int, CurveBatch, Transform]], projector: Projector
+    ) -> None:
+        sizes = [len(b) for _, b, _ in batches]
+        firsts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int).tolist()
+        self.parts = [Part(b, node, tr, f) for (node, b, tr), f in zip(batches, firsts)]
+        self.part = np.repeat(np.arange(len(batches)), sizes)
+        self.t0 = np.concatenate([b.t0 for _, b, _ in batches])
+        self.t1 = np.concatenate([b.t1 for _, b, _ in batches])
+        self.closed = np.concatenate([b.closed for _, b, _ in batches])
+        self.owner = np.repeat([-1 if b.surface is None else n for n, b, _ in batches], sizes)
+        self.kind = np.repeat([OFF if b.surface is None else b.own for _, b, _ in batches], sizes)
+        self.kind = self.kind.astype(np.int8)
+        # initial samples: uniform in t on every curve
+        k = tol.INITIAL_SAMPLES
+        self.cid = np.repeat(np.arange(len(self.t0)), k)
+        frac = np.linspace(0.0, 1.0, k)
+        self.t = (self.t0[:, None] + (self.t1 - self.t0)[:, None] * frac).ravel()
+        self.no_uv: set[int] = set()  # parts whose curves have no parameters
+        self.xyz, self.uv, self.xy = self.evaluate(self.cid, self.t, projector)
         n = len(self.t)
         self.hidden = np.zeros(n, dtype=bool)
         self.cause = np.full(n, -1, dtype=np.int64)
         self.fresh = np.ones(n, dtype=bool)
 
+    def evaluate(
+        self, cid: np.ndarray, t: np.ndarray, projector: Projector | None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """World points, parameters (NaN where a curve has none) and projections
+        (None without a projector) of curves ``cid`` at ``t``; one call per
+        batch involved."""
+        n = len(t)
+        part = self.part[cid]
+        xyz, uv = np.empty((n, 3)), np.full((n, 2), np.nan)
+        if not n:
+            return xyz, uv, None if projector is None else np.empty((n, 2))
+        if len(self.parts) == 1 or not (part != part[0]).any():
+            order, ps, cuts = None, part, np.empty(0, dtype=int)  # one batch
+        else:
+            order = None if np.all(part[1:] >= part[:-1]) else np.argsort(part, kind="stable")
+            ps = part if order is None else part[order]
+            cuts = np.flatnonzero(ps[1:] != ps[:-1]) + 1
+        for lo, hi in zip([0, *cuts.tolist()], [*cuts.tolist(), n]):
+            rows = slice(lo, hi) if order is None else order[lo:hi]
+            batch, _, transform, first = self.parts[ps[lo]]
+            x, u = batch.evaluate(cid[rows] - first, t[rows])
+            x = np.asarray(x, dtype=float).reshape(-1, 3)
+            xyz[rows] = x if transform.is_identity else transform.apply(x)
+            if u is None:
+                self.no_uv.add(int(ps[lo]))
+            else:
+                uv[rows] = np.asarray(u, float).reshape(-1, 2)
+        return xyz, uv, None if projector is None else projector.project(xyz)
 
-def evaluate(
-    batch: CurveBatch,
-    transform: Transform,
-    projector: Projector | None,
-    cid: np.ndarray,
-    t: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
-    """World points, parameters (or None) and projections of curves ``cid`` at
-    ``t``; without a projector the projections are None."""
-    xyz, uv = batch.evaluate(cid, t)
-    xyz = np.asarray(xyz, dtype=float).reshape(-1, 3)
-    if not transform.is_identity:
-        xyz = transform.apply(xyz)
-    return (
-        xyz,
-        (None if uv is None else np.asarray(uv, float).reshape(-1, 2)),
-        None if projector is None else projector.project(xyz),
-    )
+    def owners(self, rows: np.ndarray | slice) -> tuple[np.ndarray, np.ndarray]:
+        """Owner nodes and ownership codes of samples ``rows``."""
+        c = self.cid[rows]
+        return self.owner[c], self.kind[c]
 
 
 def seg_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -81,18 +117,6 @@ def seg_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         s = np.where(den > 0, (apx * abx + apy * aby) / den, 0.0)
     np.clip(s, 0.0, 1.0, out=s)
     return np.hypot(apx - s * abx, apy - s * aby)
-
-
-def initial_samples(
-    entry: int, batch: CurveBatch, node: int, transform: Transform, projector: Projector
-) -> Samples:
-    m = len(batch)
-    k = tol.INITIAL_SAMPLES
-    frac = np.linspace(0.0, 1.0, k)
-    cid = np.repeat(np.arange(m), k)
-    t = (batch.t0[:, None] + (batch.t1 - batch.t0)[:, None] * frac).ravel()
-    xyz, uv, xy = evaluate(batch, transform, projector, cid, t)
-    return Samples(entry, batch, node, transform, cid, t, xyz, uv, xy)
 
 
 def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np.ndarray:  # noqa: ANN001
@@ -119,8 +143,7 @@ def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np
     s.t = put(s.t, t)
     s.xyz = put(s.xyz, xyz)
     s.xy = put(s.xy, xy)
-    if s.uv is not None:
-        s.uv = put(s.uv, uv)
+    s.uv = put(s.uv, uv)
     s.hidden = put(s.hidden, False if hidden is None else hidden)
     s.cause = put(s.cause, -1)
     s.fresh = put(s.fresh, hidden is None)
@@ -138,11 +161,11 @@ def refine(
     abs_tol))`` equal parts at once (the deviation of a smooth curve shrinks
     with the square of the chord).  The first split uses the deviation
     predicted by the second differences of the samples (uniformly spaced on
-    each curve, as :func:`initial_samples` makes them), at no evaluation;
+    each curve, as the initial samples are), at no evaluation;
     then every chord is checked at its midpoint and the ones that fail are
     split again, until none fails.
     """
-    span = s.batch.t1 - s.batch.t0
+    span = s.t1 - s.t0
     check = s.cid[1:] == s.cid[:-1]
     if settled is not None:
         check &= ~(settled[1:] & settled[:-1])
@@ -160,7 +183,7 @@ def refine(
         if not len(idx):
             return
         tm = 0.5 * (s.t[idx] + s.t[idx + 1])
-        _, _, xy = evaluate(s.batch, s.transform, projector, s.cid[idx], tm)
+        _, _, xy = s.evaluate(s.cid[idx], tm, projector)
         dev = seg_distance(xy, s.xy[idx], s.xy[idx + 1])
         split = ~(dev <= abs_tol)  # also splits where dev is NaN
         if not split.any():
@@ -199,7 +222,7 @@ def _split(
     frac = j / np.repeat(m, m - 1)
     t = s.t[after] + frac * (s.t[after + 1] - s.t[after])
     c = s.cid[after]
-    xyz, uv, xy = evaluate(s.batch, s.transform, projector, c, t)
+    xyz, uv, xy = s.evaluate(c, t, projector)
     new = merge(s, after, c, t, xyz, uv, xy)
     if len(s.t) > tol.MAX_POINTS:
         raise ValueError(
@@ -207,9 +230,3 @@ def _split(
             "lines or raise the tolerance"
         )
     return new
-
-
-def owner_arrays(s: Samples, n: int) -> tuple[np.ndarray, np.ndarray]:
-    if s.batch.surface is None:
-        return np.full(n, -1), np.full(n, OFF, np.int8)
-    return np.full(n, s.node), np.full(n, s.batch.own, np.int8)

@@ -22,7 +22,7 @@ import numpy as np
 from . import _tolerance as tol
 from ._flips import locate_flips
 from ._occlusion import Occlusion
-from ._sampling import Samples, initial_samples, owner_arrays, refine
+from ._sampling import Samples, refine
 from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
 from .geometry.transforms import Transform
 from .projectors import CentralProjector, ParallelProjector, Projector
@@ -54,7 +54,7 @@ def local_projector(projector: Projector, transform: Transform) -> Projector:
 
 
 def _strokes(
-    s: Samples, node: Node, hidden_lines: bool, hidden_style: Style, min_extent: float
+    s: Samples, nodes: tuple[Node, ...], hidden_lines: bool, hidden_style: Style, min_extent: float
 ) -> list[Stroke]:
     """Split samples into runs of equal visibility, one stroke per run.
 
@@ -71,7 +71,7 @@ def _strokes(
     new_curve = run_cid[1:] != run_cid[:-1]
     first = np.flatnonzero(np.concatenate([[True], new_curve]))  # first run of each curve
     last = np.flatnonzero(np.concatenate([new_curve, [True]]))
-    join = (last != first) & s.batch.closed[run_cid[first]]
+    join = (last != first) & s.closed[run_cid[first]]
     join &= run_hidden[first] == run_hidden[last]
     partner = np.full(len(starts), -1)  # last run of a closed curve -> its first run
     partner[last[join]] = first[join]
@@ -82,15 +82,16 @@ def _strokes(
     joined = partner >= 0
     size = np.where(joined, np.maximum(extent, extent[partner]), extent)
     keep &= (size > min_extent) & (joined | (ends - starts >= 2))
-    names = s.batch.curve_family
-    surface = s.batch.surface
-    styles: dict[str, Style] = {}
+    styles: dict[tuple[int, str], Style] = {}
     out = []
     for r in np.flatnonzero(keep).tolist():
         a, b, c = int(starts[r]), int(ends[r]), int(run_cid[r])
-        family = s.batch.family if names is None else names[c]
-        if family not in styles:
-            styles[family] = s.batch.style or node.style_for(family)
+        p = int(s.part[c])
+        batch, node, _, first_id = s.parts[p]
+        names = batch.curve_family
+        family = batch.family if names is None else names[c - first_id]
+        if (p, family) not in styles:
+            styles[p, family] = batch.style or nodes[node].style_for(family)
         vis = not run_hidden[r]
         if joined[r]:
             fa, fb = int(starts[partner[r]]), int(ends[partner[r]])
@@ -101,37 +102,25 @@ def _strokes(
             Stroke(
                 xy=s.xy[sel],
                 xyz=s.xyz[sel],
-                uv=None if s.uv is None else s.uv[sel],
+                uv=None if p in s.no_uv else s.uv[sel],
                 visible=vis,
                 family=family,
-                surface=surface,
-                style=styles[family] if vis else hidden_style,
+                surface=batch.surface,
+                style=styles[p, family] if vis else hidden_style,
             )
         )
     return out
 
 
-def _classify(samples: list[Samples], vis: Occlusion) -> None:
-    """Test the fresh samples of every set against the scene, in one call."""
-    fresh = [np.flatnonzero(s.fresh) for s in samples]
-    n = sum(len(f) for f in fresh)
-    if not n:
+def _classify(s: Samples, vis: Occlusion) -> None:
+    """Test the fresh samples against the scene, in one call."""
+    f = np.flatnonzero(s.fresh)
+    if not len(f):
         return
-    owners = [owner_arrays(s, len(f)) for s, f in zip(samples, fresh)]
-    cause = np.empty(n, dtype=np.int64)
-    hidden = vis.hidden(
-        np.concatenate([s.xyz[f] for s, f in zip(samples, fresh)]),
-        np.concatenate([s.xy[f] for s, f in zip(samples, fresh)]),
-        np.concatenate([o for o, _ in owners]),
-        np.concatenate([k for _, k in owners]),
-        cause,
-    )
-    start = 0
-    for s, f in zip(samples, fresh):
-        s.hidden[f] = hidden[start : start + len(f)]
-        s.cause[f] = cause[start : start + len(f)]
-        s.fresh[f] = False
-        start += len(f)
+    cause = np.empty(len(f), dtype=np.int64)
+    s.hidden[f] = vis.hidden(s.xyz[f], s.xy[f], *s.owners(f), cause)
+    s.cause[f] = cause
+    s.fresh[f] = False
 
 
 def _self_hidden(s: Samples, vis: Occlusion) -> np.ndarray | None:
@@ -148,7 +137,7 @@ def _self_hidden(s: Samples, vis: Occlusion) -> np.ndarray | None:
     if not vis.nq:
         return None
     q = s.cause
-    return (q >= 0) & (vis.q_node[np.maximum(q, 0)] == s.node)
+    return (q >= 0) & (vis.q_node[np.maximum(q, 0)] == s.owner[s.cid])
 
 
 def render(
@@ -184,35 +173,30 @@ def render(
             f"Scene.render: {sum(len(b) for _, b in batches)} curves need more than "
             f"{tol.MAX_POINTS} sample points; draw fewer lines"
         )
-    samples: list[Samples] = []
-    for ni, b in batches:
-        samples.append(initial_samples(len(samples), b, ni, nodes[ni].transform, projector))
-    if not samples:
+    if not batches:
         return Drawing(strokes=(), page=page)
+    s = Samples([(ni, b, nodes[ni].transform) for ni, b in batches], projector)
     if isinstance(projector, CentralProjector):
-        for s in samples:
-            if not np.all(projector.depth(s.xyz) > 0):
-                raise ValueError(
-                    f"CentralProjector: part of node {s.node} ({nodes[s.node].item!r}) lies at or "
-                    "behind the eye; move the eye farther away"
-                )
-    allxy = np.concatenate([s.xy for s in samples])
-    finite = np.isfinite(allxy).all(axis=1)
+        behind = projector.depth(s.xyz) <= 0
+        if behind.any():
+            node = s.parts[s.part[s.cid[np.argmax(behind)]]].node
+            raise ValueError(
+                f"CentralProjector: part of node {node} ({nodes[node].item!r}) lies at or "
+                "behind the eye; move the eye farther away"
+            )
+    finite = np.isfinite(s.xy).all(axis=1)
     if not finite.all():
-        bad = next(s for s in samples if not np.isfinite(s.xy).all())
+        batch, node, _, _ = s.parts[s.part[s.cid[np.argmin(finite)]]]
         raise ValueError(
-            f"render: node {bad.node} ({nodes[bad.node].item!r}) produced non-finite points "
-            f"in family {bad.batch.family!r}"
+            f"render: node {node} ({nodes[node].item!r}) produced non-finite points "
+            f"in family {batch.family!r}"
         )
-    diag = float(np.linalg.norm(allxy.max(axis=0) - allxy.min(axis=0)))
+    diag = float(np.linalg.norm(s.xy.max(axis=0) - s.xy.min(axis=0)))
     abs_tol = tolerance * (diag if diag > 0 else 1.0)
     vis = Occlusion(nodes, projector)
-    _classify(samples, vis)
-    for s in samples:
-        refine(s, projector, abs_tol, None if hidden_lines else _self_hidden(s, vis))
-    _classify(samples, vis)
-    locate_flips(samples, vis, projector)
-    strokes: list[Stroke] = []
-    for s in samples:
-        strokes.extend(_strokes(s, nodes[s.node], hidden_lines, hidden_style, 1e-12 * diag))
+    _classify(s, vis)
+    refine(s, projector, abs_tol, None if hidden_lines else _self_hidden(s, vis))
+    _classify(s, vis)
+    locate_flips(s, vis, projector)
+    strokes = _strokes(s, nodes, hidden_lines, hidden_style, 1e-12 * diag)
     return Drawing(strokes=strokes, page=page)

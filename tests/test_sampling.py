@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 import lgraph as lg
-from lgraph._sampling import _predicted_deviation, initial_samples, merge, seg_distance
+from lgraph._sampling import Samples, _predicted_deviation, merge, seg_distance
 from lgraph.geometry.transforms import IDENTITY
 
 
@@ -51,7 +51,7 @@ def test_merge_matches_np_insert() -> None:
     sphere = lg.Sphere(1)
     proj = lg.ParallelProjector(direction=(1, 2, 3))
     batch = lg.ParameterLines(2, 3).batches(sphere, proj)[0]
-    s = initial_samples(0, batch, 0, IDENTITY, proj)
+    s = Samples([(0, batch, IDENTITY)], proj)
     s.fresh[:] = False
     old_t, old_xyz = s.t.copy(), s.xyz.copy()
     after = np.array([0, 0, 5, 40])
@@ -75,3 +75,32 @@ def test_merge_matches_np_insert() -> None:
         [True],
     )
     assert s.hidden[2] and not s.fresh[2] and s.hidden.sum() == 1
+
+
+def test_scene_samples_evaluate_every_batch_in_any_order() -> None:
+    """One sample set holds the curves of all batches (here parameter lines of
+    a moved sphere and a free curve); evaluating mixed, unsorted curve ids
+    gives what each batch gives on its own, moved by its node's transform."""
+    sphere = lg.Sphere(2)
+    proj = lg.CentralProjector(eye=(9, -7, 6))
+    lines = lg.ParameterLines(2, 3).batches(sphere, proj)[0]
+    free = lg.Curve(lambda t: np.stack([t, t**2, 0 * t], axis=-1), -1, 1).batch()
+    move = lg.translate(1, 2, 3)
+    s = Samples([(0, lines, move), (1, free, IDENTITY)], proj)
+    assert len(s.parts) == 2 and s.parts[1].first == len(lines)
+    rng = np.random.default_rng(2)
+    cid = rng.integers(0, len(lines) + 1, 40)
+    t = rng.uniform(0, 1, 40)
+    xyz, uv, xy = s.evaluate(cid, t, proj)
+    on_lines = cid < len(lines)
+    ref, ref_uv = lines.evaluate(cid[on_lines], t[on_lines])
+    assert np.allclose(xyz[on_lines], move.apply(ref))
+    assert np.allclose(uv[on_lines], ref_uv)
+    x = t[~on_lines]
+    assert np.allclose(xyz[~on_lines], np.column_stack([x, x**2, 0 * x]))
+    assert np.isnan(uv[~on_lines]).all() and s.no_uv == {1}
+    assert np.allclose(xy, proj.project(xyz))
+    assert s.evaluate(cid, t, None)[2] is None
+    # per-curve ownership: the sphere's node for its lines, none for the free curve
+    owner, _ = s.owners(np.array([0, len(s.t) - 1]))
+    assert owner.tolist() == [0, -1]
