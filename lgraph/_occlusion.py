@@ -129,8 +129,13 @@ class Occlusion:
             cause[:] = -1
         if self.nq:
             pt, q = self._quadric_pairs(xy)
-            own = np.where(owner[pt] == self.q_node[q], kind[pt], OFF).astype(np.int8)
-            h = quadric_ray_hits(xyz[pt], dirs[pt], smax[pt], own, *self._coefficients(q))
+            if len(pt) == len(xyz) and self.nq == 1:  # one quadric, every point in its box
+                o, v, sm, ow = xyz, dirs, smax, owner
+                kd = kind
+            else:
+                o, v, sm, ow, kd = xyz[pt], dirs[pt], smax[pt], owner[pt], kind[pt]
+            own = np.where(ow == self.q_node[q], kd, OFF).astype(np.int8)
+            h = quadric_ray_hits(o, v, sm, own, *self._coefficients(q))
             out[pt[h]] = True
             if cause is not None:
                 cause[pt[h]] = q[h]

@@ -84,17 +84,23 @@ def _strokes(
     keep &= (size > min_extent) & (joined | (ends - starts >= 2))
     styles: dict[tuple[int, str], Style] = {}
     out = []
-    for r in np.flatnonzero(keep).tolist():
-        a, b, c = int(starts[r]), int(ends[r]), int(run_cid[r])
-        p = int(s.part[c])
+    rows = np.flatnonzero(keep)
+    starts_l, ends_l, partner_l = starts.tolist(), ends.tolist(), partner.tolist()
+    for r, c, p, hid in zip(
+        rows.tolist(),
+        run_cid[rows].tolist(),
+        s.part[run_cid[rows]].tolist(),
+        run_hidden[rows].tolist(),
+    ):
         batch, node, _, first_id = s.parts[p]
         names = batch.curve_family
         family = batch.family if names is None else names[c - first_id]
-        if (p, family) not in styles:
-            styles[p, family] = batch.style or nodes[node].style_for(family)
-        vis = not run_hidden[r]
-        if joined[r]:
-            fa, fb = int(starts[partner[r]]), int(ends[partner[r]])
+        style = styles.get((p, family))
+        if style is None:
+            style = styles[p, family] = batch.style or nodes[node].style_for(family)
+        a, b = starts_l[r], ends_l[r]
+        if partner_l[r] >= 0:
+            fa, fb = starts_l[partner_l[r]], ends_l[partner_l[r]]
             sel = np.concatenate([np.arange(a, b), np.arange(fa + 1, fb)])
         else:
             sel = slice(a, b)
@@ -103,10 +109,10 @@ def _strokes(
                 xy=s.xy[sel],
                 xyz=s.xyz[sel],
                 uv=None if p in s.no_uv else s.uv[sel],
-                visible=vis,
+                visible=not hid,
                 family=family,
                 surface=batch.surface,
-                style=styles[p, family] if vis else hidden_style,
+                style=hidden_style if hid else style,
             )
         )
     return out
