@@ -217,11 +217,13 @@ class Drawing:
         if not pts:
             return (0.0, 0.0, 1.0, 1.0)
         allp = np.concatenate(pts)
-        allp = allp[np.isfinite(allp).all(axis=1)]  # NaN points break a stroke
-        if not len(allp):
+        x, y = allp[:, 0], allp[:, 1]  # by column: reductions along axis 0 of (n, 2) are slow
+        ok = np.isfinite(x) & np.isfinite(y)
+        if not ok.all():  # NaN points break a stroke
+            x, y = x[ok], y[ok]
+        if not len(x):
             return (0.0, 0.0, 1.0, 1.0)
-        lo, hi = allp.min(axis=0), allp.max(axis=0)
-        return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+        return (float(x.min()), float(y.min()), float(x.max()), float(y.max()))
 
     def _layout(self) -> tuple[float, np.ndarray, float, float]:
         """Scale, offset and page size mapping projection coords to page points

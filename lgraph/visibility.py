@@ -190,14 +190,16 @@ def render(
                 f"CentralProjector: part of node {node} ({nodes[node].item!r}) lies at or "
                 "behind the eye; move the eye farther away"
             )
-    finite = np.isfinite(s.xy).all(axis=1)
+    # (column by column: numpy's reductions along a short last axis are slow)
+    x, y = s.xy[:, 0], s.xy[:, 1]
+    finite = np.isfinite(x) & np.isfinite(y)
     if not finite.all():
         batch, node, _, _ = s.parts[s.part[s.cid[np.argmin(finite)]]]
         raise ValueError(
             f"render: node {node} ({nodes[node].item!r}) produced non-finite points "
             f"in family {batch.family!r}"
         )
-    diag = float(np.linalg.norm(s.xy.max(axis=0) - s.xy.min(axis=0)))
+    diag = math.hypot(x.max() - x.min(), y.max() - y.min())
     abs_tol = tolerance * (diag if diag > 0 else 1.0)
     vis = Occlusion(nodes, projector)
     _classify(s, vis)
