@@ -135,8 +135,9 @@ def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np
     order[~new] = np.arange(n)
     order[new] = np.arange(n, n + k)
 
-    def put(a: np.ndarray, v: np.ndarray) -> np.ndarray:
-        v = np.broadcast_to(np.asarray(v, a.dtype), (k,) + a.shape[1:])
+    def put(a: np.ndarray, v: np.ndarray | float | bool) -> np.ndarray:
+        if not isinstance(v, np.ndarray) or v.shape != (k,) + a.shape[1:]:
+            v = np.full((k,) + a.shape[1:], v, dtype=a.dtype)
         return np.take(np.concatenate([a, v]), order, axis=0)
 
     s.cid = put(s.cid, cid)

@@ -61,7 +61,10 @@ def parameter_line_batches(
     def uv(idx: np.ndarray, t: np.ndarray) -> np.ndarray:
         first = idx < n1  # a line u1 = const, running along u2
         c = const[idx]
-        return np.column_stack([np.where(first, c, t), np.where(first, t, c)])
+        out = np.empty((len(c), 2))
+        np.copyto(out[:, 0], np.where(first, c, t))
+        np.copyto(out[:, 1], np.where(first, t, c))
+        return out
 
     names = (family1,) * n1 + (family2,) * n2
     return [

@@ -209,8 +209,13 @@ class _Ellipsoidal(Quadric):
     def point(self, u1: Any, u2: Any) -> np.ndarray:
         """``(a cos u1 cos u2, b cos u1 sin u2, c sin u1)``: ``u1`` latitude, ``u2`` longitude."""
         u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+        a, b, c = self.axes.tolist()
+        out = np.empty(u1.shape + (3,))
         c1 = np.cos(u1)
-        return np.stack([c1 * np.cos(u2), c1 * np.sin(u2), np.sin(u1)], axis=-1) * self.axes
+        np.multiply(c1 * a, np.cos(u2), out=out[..., 0])
+        np.multiply(c1 * b, np.sin(u2), out=out[..., 1])
+        np.multiply(np.sin(u1), c, out=out[..., 2])
+        return out
 
     def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
         u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
