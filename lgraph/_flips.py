@@ -1,8 +1,11 @@
 """Locating visibility flips between samples to near machine precision.
 
-Flips caused by an ellipsoid are found by regula falsi on a continuous hiding
-margin (a handful of steps); the rest by K-section on the exact visibility
-test.  Both ends of every located flip are inserted into the samples.
+Where an exact ellipse (a parameter line of an ellipsoid) crosses its own
+ellipsoid's contour, the flip is in closed form; other flips caused by an
+ellipsoid are found by a safeguarded parabola search on a continuous hiding
+margin (about three steps); the rest by K-section on the exact visibility
+test.  Every result is verified by the full test, and both ends of every
+located flip are inserted into the samples.
 """
 
 from __future__ import annotations
@@ -13,7 +16,8 @@ import numpy as np
 from . import _tolerance as tol
 from ._occlusion import Occlusion
 from ._sampling import Samples, merge
-from .projectors import Projector
+from .projectors import CentralProjector, Projector
+from .surfaces._base import ON
 
 __all__ = ["locate_flips"]
 
@@ -59,7 +63,7 @@ class _Flips:
         return (hi - lo) > tol.BISECTION_RTOL * np.maximum(self.span[sel], np.abs(lo))
 
 
-def _regula_falsi(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
+def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
     """Flips caused by an ellipsoid: root finding on its continuous hiding
     margin ``f`` (safeguarded, a handful of steps instead of dozens).
 
@@ -95,6 +99,8 @@ def _regula_falsi(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) 
     scale = np.maximum(fl.span[idx], np.maximum(np.abs(a), np.abs(b)))
     h_min = 0.5 * tol.BISECTION_RTOL * scale
     h_quad = 1e-6 * scale
+    if s.ellipses is not None:
+        _closed_form(s, fl, vis, projector, idx, q, a, b)
     u = a + _secant(fa, fb) * (b - a)
     h = 1e-2 * np.abs(b - a)
     rows3 = np.array([-1.0, 0.0, 1.0])
@@ -138,6 +144,57 @@ def _regula_falsi(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) 
     sel, hl = idx[ok], fl.hlo[idx[ok]]
     fl.lo[sel] = np.where(hl, b[ok], a[ok])
     fl.hi[sel] = np.where(hl, a[ok], b[ok])
+
+
+def _closed_form(
+    s: Samples,
+    fl: _Flips,
+    vis: Occlusion,
+    projector: Projector,
+    idx: np.ndarray,
+    q: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+) -> None:
+    """Flips of exact ellipses (``Samples.ellipses``) across the contour of the
+    ellipsoid they lie on, in closed form; ``a, b`` (visible and hidden ends
+    of the brackets ``idx``, hidden by quadrics ``q``) collapse onto them.
+
+    On its quadric ``x.A x + b.x + d = 0`` a point is hidden by it exactly
+    when ``(2 A x + b) . w < 0`` (``w`` toward the viewer), and there that
+    function is linear in ``x``: ``x . (2 A e + b) + b . e + 2 d`` for an eye
+    ``e``, ``x . 2 A v + b . v`` for a parallel view ``v``.  On
+    ``x = c + p cos t + r sin t`` it is ``P + Q cos t + R sin t``, whose
+    roots are ``atan2(R, Q) -+ acos(-P / hypot(Q, R))``.  Brackets with no
+    or two roots keep their ends; every result is verified by the caller."""
+    on = (fl.owner[idx] == vis.q_node[q]) & (fl.kind[idx] == ON)
+    sel = np.flatnonzero(on & np.isfinite(s.ellipses[fl.cid[idx], 0, 0]))
+    if not len(sel):
+        return
+    e = s.ellipses[fl.cid[idx[sel]]]
+    A, bq, d = vis.q_A[q[sel]], vis.q_b[q[sel]], vis.q_d[q[sel]]
+    if isinstance(projector, CentralProjector):
+        k = 2 * A @ projector.eye + bq
+        k0 = bq @ projector.eye + 2 * d
+    else:
+        v = projector.frame[2]
+        k = 2 * A @ v
+        k0 = bq @ v
+    P = np.einsum("ni,ni->n", k, e[:, 0]) + k0
+    Q = np.einsum("ni,ni->n", k, e[:, 1])
+    R = np.einsum("ni,ni->n", k, e[:, 2])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        half = np.arccos(-P / np.hypot(Q, R))  # NaN: no crossing at all
+    lo, hi = np.minimum(a[sel], b[sel]), np.maximum(a[sel], b[sel])
+    root = np.arctan2(R, Q)[:, None] + half[:, None] * np.array([-1.0, 1.0])
+    root += 2 * np.pi * np.round(((0.5 * (lo + hi))[:, None] - root) / (2 * np.pi))
+    inside = (root > lo[:, None]) & (root < hi[:, None])
+    one = inside.sum(axis=1) == 1
+    sel, root = sel[one], root[one][inside[one]]
+    step = 0.25 * tol.BISECTION_RTOL * np.maximum(fl.span[idx[sel]], np.abs(root))
+    toward_b = np.sign(b[sel] - a[sel])
+    a[sel] = root - toward_b * step
+    b[sel] = root + toward_b * step
 
 
 def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
@@ -184,7 +241,7 @@ def locate_flips(s: Samples, vis: Occlusion, projector: Projector) -> None:
     fl = _Flips.find(s)
     if not len(fl):
         return
-    _regula_falsi(s, fl, vis, projector)
+    _margin_search(s, fl, vis, projector)
     _k_section(s, fl, vis, projector)
     # both ends of each bracket, in order, right after the flip's first sample
     t = np.column_stack([fl.lo, fl.hi]).ravel()

@@ -179,7 +179,7 @@ class Occlusion:
         With ``qa s^2 + qb s + qc`` the ray's quadratic (``qa > 0``): a point on
         the ellipsoid is hidden by it iff ``s2 = -qb/qa > 0``; any other point
         iff it is inside (``qc < 0``) or the ray meets the ellipsoid ahead
-        (``disc >= 0`` and ``qb < 0``).  Used to find flips by regula falsi.
+        (``disc >= 0`` and ``qb < 0``).  Used to locate flips by root finding.
         """
         dirs, _ = self.projector.rays(xyz)
         A, b, d, _ = self._coefficients(q)  # per point, or one quadric's (broadcast)

@@ -56,6 +56,15 @@ class Samples:
         self.owner = np.repeat([-1 if b.surface is None else n for n, b, _ in batches], sizes)
         self.kind = np.repeat([OFF if b.surface is None else b.own for _, b, _ in batches], sizes)
         self.kind = self.kind.astype(np.int8)
+        #: per curve, its exact ellipse in world coordinates (NaN: none), or None
+        self.ellipses = None
+        if any(b.ellipses is not None for _, b, _ in batches):
+            self.ellipses = np.full((len(self.t0), 3, 3), np.nan)
+            for (_, b, tr), first in zip(batches, firsts):
+                if b.ellipses is not None:
+                    e = b.ellipses @ tr.matrix.T  # centre and both axes as vectors
+                    e[:, 0] += tr.offset  # the centre moves with the offset too
+                    self.ellipses[first : first + len(b)] = e
         # initial samples: uniform in t on every curve
         k = tol.INITIAL_SAMPLES
         self.cid = np.repeat(np.arange(len(self.t0)), k)

@@ -175,6 +175,11 @@ class CurveBatch:
 
     ``curve_family`` (optional) names the family of each curve, overriding
     ``family`` (one batch may hold both parameter-line families, say).
+
+    ``ellipses`` (optional, ``(m, 3, 3)``) says that curve ``k`` is exactly
+    ``x(t) = c + p cos t + q sin t`` with rows ``c, p, q`` (local
+    coordinates), as the parameter lines of an ellipsoid are; the renderer
+    then finds where it crosses its own surface's contour in closed form.
     """
 
     family: str
@@ -186,10 +191,18 @@ class CurveBatch:
     own: int = ON
     style: Any = None
     curve_family: tuple[str, ...] | None = None
+    ellipses: np.ndarray | None = None
 
     def __attrs_post_init__(self) -> None:
         object.__setattr__(self, "t0", np.asarray(self.t0, dtype=float).ravel())
         object.__setattr__(self, "t1", np.asarray(self.t1, dtype=float).ravel())
+        if self.ellipses is not None:
+            e = np.asarray(self.ellipses, dtype=float)
+            if e.shape != (len(self.t0), 3, 3):
+                raise ValueError(
+                    f"CurveBatch: ellipses must have shape ({len(self.t0)}, 3, 3), got {e.shape}"
+                )
+            object.__setattr__(self, "ellipses", e)
         if self.closed is None:
             object.__setattr__(self, "closed", np.zeros(len(self.t0), bool))
         else:

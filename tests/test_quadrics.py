@@ -219,3 +219,24 @@ def test_hidden_line_removal_matches_brute_force(proj):
         assert np.all(hidden[use] == (not st.visible)), (st.family, st.visible, hidden[use].mean())
         checked += int(use.sum())
     assert checked > 2000
+
+
+@pytest.mark.parametrize("surf", [lg.Ellipsoid(3, 2, 1.5), lg.Sphere(0.7)])
+def test_ellipsoid_parameter_lines_carry_their_exact_ellipses(surf) -> None:
+    """``CurveBatch.ellipses`` (centre, two axes) reproduce every evaluated
+    point of every parameter line, at any t (also outside the drawn range)."""
+    (batch,) = surf.parameter_lines(5, 7)
+    assert batch.ellipses.shape == (12, 3, 3)
+    rng = np.random.default_rng(3)
+    cid = rng.integers(0, 12, 300)
+    t = rng.uniform(-7, 7, 300)
+    x, _ = batch.evaluate(cid, t)
+    e = batch.ellipses[cid]
+    y = e[:, 0] + e[:, 1] * np.cos(t)[:, None] + e[:, 2] * np.sin(t)[:, None]
+    assert np.abs(x - y).max() < 1e-14
+    assert surf.parameter_lines(0, 0) == []
+
+
+def test_curve_batch_rejects_misshapen_ellipses() -> None:
+    with pytest.raises(ValueError, match=r"ellipses must have shape \(2, 3, 3\)"):
+        lg.CurveBatch("c", [0, 0], [1, 1], lambda i, t: (None, None), ellipses=np.zeros((3, 3)))

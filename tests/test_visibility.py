@@ -200,3 +200,36 @@ def test_eye_inside_scene_is_a_clear_error():
     scene.add(lg.Sphere(1))
     with pytest.raises(ValueError, match="behind the eye"):
         scene.render(lg.CentralProjector(eye=(0.5, 0, 0), target=(1, 0, 0)))
+
+
+@pytest.mark.parametrize("name", ["parallel", "central"])
+def test_closed_form_contour_crossings_match_the_iterative_search(name, monkeypatch) -> None:
+    """Parameter lines of ellipsoids cross their own contour where the closed
+    form says (no iterations); switching it off, the margin search finds the same
+    stroke ends to ~1e-12 of the scene size."""
+    import lgraph._flips as flips
+
+    scene, _, _ = three_ellipsoids()
+    p = PROJECTORS[name]
+    solved = []
+    closed_form = flips._closed_form
+
+    def counting(s, fl, vis, projector, idx, q, a, b):  # noqa: ANN001, ANN202
+        before = a.copy()
+        closed_form(s, fl, vis, projector, idx, q, a, b)
+        solved.append(int((a != before).sum()))
+
+    monkeypatch.setattr(flips, "_closed_form", counting)
+    fast = scene.render(p, hidden_lines=True)
+    assert solved and solved[0] > 20
+    monkeypatch.setattr(flips, "_closed_form", lambda *args: None)
+    slow = scene.render(p, hidden_lines=True)
+
+    def ends(d: lg.Drawing) -> np.ndarray:
+        return np.array(sorted((*s.xyz[0], *s.xyz[-1], s.visible) for s in d.strokes))
+
+    e1, e2 = ends(fast), ends(slow)
+    assert e1.shape == e2.shape
+    # every stroke of one has a twin in the other (sorting may swap near-ties)
+    gap = np.abs(e1[:, None, :] - e2[None, :, :]).max(axis=2)
+    assert gap.min(axis=1).max() < 1e-10 and gap.min(axis=0).max() < 1e-10

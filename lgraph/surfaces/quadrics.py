@@ -233,6 +233,29 @@ class _Ellipsoidal(Quadric):
         x22 = np.stack([-c1 * c2, -c1 * s2, z], axis=-1) * self.axes
         return x11, x12, x22
 
+    def parameter_lines(self, n1: int, n2: int) -> list[CurveBatch]:
+        """The parameter lines, each marked with its exact ellipse (see
+        :class:`~lgraph.curves.CurveBatch`): ``u1 = c`` is
+        ``(0, 0, c_3 sin c) + (a cos c, 0, 0) cos t + (0, b cos c, 0) sin t``
+        (``t = u2``), ``u2 = c`` is
+        ``(a cos c, b sin c, 0) cos t + (0, 0, c_3) sin t`` (``t = u1``)."""
+        batches = super().parameter_lines(n1, n2)
+        if not batches:
+            return batches
+        (batch,) = batches
+        d = self.domain
+        v1, v2 = d.lines(0, n1), d.lines(1, n2)
+        a, b, c = self.axes.tolist()
+        e1 = np.zeros((len(v1), 3, 3))
+        e1[:, 0, 2] = c * np.sin(v1)
+        e1[:, 1, 0] = a * np.cos(v1)
+        e1[:, 2, 1] = b * np.cos(v1)
+        e2 = np.zeros((len(v2), 3, 3))
+        e2[:, 1, 0] = a * np.cos(v2)
+        e2[:, 1, 1] = b * np.sin(v2)
+        e2[:, 2, 2] = c
+        return [attrs.evolve(batch, ellipses=np.concatenate([e1, e2]))]
+
     def uv_of(self, points: Any) -> np.ndarray:
         """Parameters ``(u1, u2)`` of points on the surface (inverse of :meth:`point`)."""
         y = np.asarray(points, dtype=float) / self.axes
