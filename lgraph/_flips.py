@@ -19,7 +19,7 @@ from ._sampling import Samples, merge
 from .projectors import CentralProjector, Projector
 from .surfaces._base import ON
 
-__all__ = ["locate_flips"]
+__all__ = ["locate_flips", "seed_crossings"]
 
 
 @attrs.define
@@ -146,33 +146,19 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
     fl.hi[sel] = np.where(hl, a[ok], b[ok])
 
 
-def _closed_form(
-    s: Samples,
-    fl: _Flips,
-    vis: Occlusion,
-    projector: Projector,
-    idx: np.ndarray,
-    q: np.ndarray,
-    a: np.ndarray,
-    b: np.ndarray,
-) -> None:
-    """Flips of exact ellipses (``Samples.ellipses``) across the contour of the
-    ellipsoid they lie on, in closed form; ``a, b`` (visible and hidden ends
-    of the brackets ``idx``, hidden by quadrics ``q``) collapse onto them.
+def _contour_crossings(
+    e: np.ndarray, A: np.ndarray, bq: np.ndarray, d: np.ndarray, projector: Projector
+) -> np.ndarray:
+    """Where exact ellipses ``x = c + p cos t + r sin t`` (rows of ``e``)
+    cross the contour of the ellipsoids ``x.A x + bq.x + d = 0`` they lie on:
+    ``(n, 2)`` angles ``t`` (defined modulo 2 pi; NaN: no crossing).
 
-    On its quadric ``x.A x + b.x + d = 0`` a point is hidden by it exactly
-    when ``(2 A x + b) . w < 0`` (``w`` toward the viewer), and there that
-    function is linear in ``x``: ``x . (2 A e + b) + b . e + 2 d`` for an eye
-    ``e``, ``x . 2 A v + b . v`` for a parallel view ``v``.  On
-    ``x = c + p cos t + r sin t`` it is ``P + Q cos t + R sin t``, whose
-    roots are ``atan2(R, Q) -+ acos(-P / hypot(Q, R))``.  Brackets with no
-    or two roots keep their ends; every result is verified by the caller."""
-    on = (fl.owner[idx] == vis.q_node[q]) & (fl.kind[idx] == ON)
-    sel = np.flatnonzero(on & np.isfinite(s.ellipses[fl.cid[idx], 0, 0]))
-    if not len(sel):
-        return
-    e = s.ellipses[fl.cid[idx[sel]]]
-    A, bq, d = vis.q_A[q[sel]], vis.q_b[q[sel]], vis.q_d[q[sel]]
+    On its quadric a point is hidden by it exactly when ``(2 A x + bq) . w <
+    0`` (``w`` toward the viewer), and there that function is linear in
+    ``x``: ``x . (2 A o + bq) + bq . o + 2 d`` for an eye ``o``,
+    ``x . 2 A v + bq . v`` for a parallel view ``v``.  On the ellipse it is
+    ``P + Q cos t + R sin t``, zero at ``atan2(R, Q) -+ acos(-P / hypot(Q, R))``.
+    """
     if isinstance(projector, CentralProjector):
         k = 2 * A @ projector.eye + bq
         k0 = bq @ projector.eye + 2 * d
@@ -185,8 +171,33 @@ def _closed_form(
     R = np.einsum("ni,ni->n", k, e[:, 2])
     with np.errstate(divide="ignore", invalid="ignore"):
         half = np.arccos(-P / np.hypot(Q, R))  # NaN: no crossing at all
+    return np.arctan2(R, Q)[:, None] + half[:, None] * np.array([-1.0, 1.0])
+
+
+def _closed_form(
+    s: Samples,
+    fl: _Flips,
+    vis: Occlusion,
+    projector: Projector,
+    idx: np.ndarray,
+    q: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+) -> None:
+    """Flips of exact ellipses (``Samples.ellipses``) across the contour of the
+    ellipsoid they lie on, in closed form (:func:`_contour_crossings`); ``a,
+    b`` (visible and hidden ends of the brackets ``idx``, hidden by quadrics
+    ``q``) collapse onto them.  Brackets with no or two crossings keep their
+    ends; every result is verified by the caller."""
+    on = (fl.owner[idx] == vis.q_node[q]) & (fl.kind[idx] == ON)
+    sel = np.flatnonzero(on & np.isfinite(s.ellipses[fl.cid[idx], 0, 0]))
+    if not len(sel):
+        return
+    qs = q[sel]
+    root = _contour_crossings(
+        s.ellipses[fl.cid[idx[sel]]], vis.q_A[qs], vis.q_b[qs], vis.q_d[qs], projector
+    )
     lo, hi = np.minimum(a[sel], b[sel]), np.maximum(a[sel], b[sel])
-    root = np.arctan2(R, Q)[:, None] + half[:, None] * np.array([-1.0, 1.0])
     root += 2 * np.pi * np.round(((0.5 * (lo + hi))[:, None] - root) / (2 * np.pi))
     inside = (root > lo[:, None]) & (root < hi[:, None])
     one = inside.sum(axis=1) == 1
@@ -195,6 +206,55 @@ def _closed_form(
     toward_b = np.sign(b[sel] - a[sel])
     a[sel] = root - toward_b * step
     b[sel] = root + toward_b * step
+
+
+def seed_crossings(s: Samples, vis: Occlusion, projector: Projector) -> None:
+    """Insert samples on both sides of every contour crossing of an exact
+    ellipse on its own ellipsoid that lies in a chord without a flip.
+
+    Such a chord holds two crossings (both crossings of the curve: it meets
+    the contour twice at most), i.e. a piece visible or hidden between two
+    samples of the other state, which sampling alone would miss however
+    fine.  The new samples are fresh (tested later); usually there are none.
+    """
+    if s.ellipses is None or not vis.nq:
+        return
+    q_of_node = np.full(int(max(s.owner.max(), vis.q_node.max())) + 1, -1)
+    q_of_node[vis.q_node] = np.arange(vis.nq)
+    c = np.flatnonzero(np.isfinite(s.ellipses[:, 0, 0]) & (s.kind == ON) & (s.owner >= 0))
+    q = q_of_node[s.owner[c]]
+    c, q = c[q >= 0], q[q >= 0]
+    c, q = c[vis.q_pd[q]], q[vis.q_pd[q]]
+    if not len(c):
+        return
+    root = _contour_crossings(s.ellipses[c], vis.q_A[q], vis.q_b[q], vis.q_d[q], projector)
+    t0, span = s.t0[c][:, None], (s.t1 - s.t0)[c][:, None]
+    root = t0 + np.mod(root - t0, 2 * np.pi)  # the first turn from t0 on
+    inside = np.isfinite(root) & (root < t0 + span)
+    cid, t = np.repeat(c, 2)[inside.ravel()], root[inside]
+    if not len(t):
+        return
+    # the chord holding each crossing: samples are sorted by (curve, t)
+    scale = 0.5 / (s.t1 - s.t0)
+    keys = s.cid + (s.t - s.t0[s.cid]) * scale[s.cid]
+    j = np.searchsorted(keys, cid + (t - s.t0[cid]) * scale[cid], side="right")
+    ok = (j > 0) & (j < len(keys))
+    j, cid, t = j[ok], cid[ok], t[ok]
+    quiet = (s.cid[j - 1] == cid) & (s.cid[j] == cid) & (s.hidden[j - 1] == s.hidden[j])
+    j, cid, t = j[quiet], cid[quiet], t[quiet]
+    if not len(t):
+        return
+    # both sides of each crossing, strictly inside the chord and in order
+    room = np.minimum(t - s.t[j - 1], s.t[j] - t)
+    step = np.minimum(1e-7 * (s.t1 - s.t0)[cid], 0.5 * room)
+    ok = step > tol.BISECTION_RTOL * (s.t1 - s.t0)[cid]  # not on a sample already
+    j, cid, t, step = j[ok], cid[ok], t[ok], step[ok]
+    order = np.lexsort((t, j))
+    j, cid, t, step = j[order], cid[order], t[order], step[order]
+    tt = np.column_stack([t - step, t + step]).ravel()
+    cc = np.repeat(cid, 2)
+    xyz, uv, xy = s.evaluate(cc, tt, projector)
+    merge(s, np.repeat(j - 1, 2), cc, tt, xyz, uv, xy)
 
 
 def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:

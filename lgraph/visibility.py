@@ -2,7 +2,9 @@
 
 1. every node's families give curve batches (in the node's local frame);
 2. the initial samples are tested against every surface in the scene
-   (vectorized, with a projected bounding-box cull; :mod:`lgraph._occlusion`);
+   (vectorized, with a projected bounding-box cull; :mod:`lgraph._occlusion`),
+   and samples are added on both sides of contour crossings that they miss
+   (exact ellipses on their own ellipsoid, in closed form);
 3. all curves are sampled adaptively until each chord deviates from the true
    projected curve by at most ``tolerance`` times the figure's diagonal
    (:mod:`lgraph._sampling`) -- except, without hidden lines, chords on the
@@ -20,7 +22,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import _tolerance as tol
-from ._flips import locate_flips
+from ._flips import locate_flips, seed_crossings
 from ._occlusion import Occlusion
 from ._sampling import Samples, refine
 from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
@@ -134,11 +136,12 @@ def _self_hidden(s: Samples, vis: Occlusion) -> np.ndarray | None:
 
     When hidden lines are not drawn, a chord between two of them is not
     refined.  A visible piece inside such a chord would have to cross the
-    contour twice within it; for a plane section (parameter lines of
-    ellipsoids) those are its only two contour crossings, so the piece is a
-    near-tangency shorter than the chord.  Chords hidden by *other*
-    surfaces are refined as usual, so that visible pieces peeking out
-    between hidden samples keep being found.
+    contour twice within it; for exact ellipses (parameter lines of
+    ellipsoids) :func:`~lgraph._flips.seed_crossings` has put samples at
+    both crossings already; other curves could, in principle, hide such a
+    near-tangency shorter than the chord.  Chords hidden by *other* surfaces
+    are refined as usual, so that visible pieces peeking out between hidden
+    samples keep being found.
     """
     if not vis.nq:
         return None
@@ -203,6 +206,7 @@ def render(
     abs_tol = tolerance * (diag if diag > 0 else 1.0)
     vis = Occlusion(nodes, projector)
     _classify(s, vis)
+    seed_crossings(s, vis, projector)
     refine(s, projector, abs_tol, None if hidden_lines else _self_hidden(s, vis))
     _classify(s, vis)
     locate_flips(s, vis, projector)

@@ -233,3 +233,41 @@ def test_closed_form_contour_crossings_match_the_iterative_search(name, monkeypa
     # every stroke of one has a twin in the other (sorting may swap near-ties)
     gap = np.abs(e1[:, None, :] - e2[None, :, :]).max(axis=2)
     assert gap.min(axis=1).max() < 1e-10 and gap.min(axis=0).max() < 1e-10
+
+
+@pytest.mark.parametrize("hidden_lines", [False, True])
+@pytest.mark.parametrize("azimuth", [5.625, 0.0, 2.0])
+def test_short_visible_arc_between_hidden_samples_is_found(hidden_lines, azimuth) -> None:
+    """The latitude -54 deg of a unit sphere seen from elevation 35.95 deg is
+    visible only where cos(lon - azimuth) > -tan(-54) tan(35.95) (an arc of
+    6.9 deg; the initial samples are 11.25 deg apart, and at azimuth 5.625 none
+    falls inside).  Its two contour crossings are known in closed form, so the
+    arc is found, with exact ends, with or without hidden lines."""
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(9, 8))
+    d = scene.render(lg.ParallelProjector.from_angles(azimuth, 35.95), hidden_lines=hidden_lines)
+    lat = np.radians(-54)
+    arcs = [
+        s for s in d.strokes if s.visible and s.family == "u1" and abs(s.uv[0, 0] - lat) < 1e-12
+    ]
+    assert len(arcs) == 1
+    half = np.arccos(-np.tan(lat) * np.tan(np.radians(35.95)))  # independent: n . v = 0
+    ends = np.mod(arcs[0].uv[[0, -1], 1] - np.radians(azimuth) + np.pi, 2 * np.pi) - np.pi
+    assert np.allclose(ends, [-half, half], atol=1e-9)
+
+
+def test_short_hidden_gap_between_visible_samples_is_found() -> None:
+    """The mirror case: latitude +54 deg is hidden only where cos(lon - 185.625
+    deg) > tan(54) tan(35.95) (6.9 deg; at a coarse tolerance no sample falls
+    inside); the one visible stroke runs around the rest of the circle, its
+    ends exact."""
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(9, 8))
+    d = scene.render(lg.ParallelProjector.from_angles(5.625, 35.95), tolerance=0.01)
+    lat = np.radians(54)
+    arcs = [s for s in d.strokes if s.family == "u1" and abs(s.uv[0, 0] - lat) < 1e-12]
+    assert len(arcs) == 1
+    half = np.arccos(np.tan(lat) * np.tan(np.radians(35.95)))
+    back = np.radians(185.625)
+    ends = np.mod(arcs[0].uv[[0, -1], 1] - back + np.pi, 2 * np.pi) - np.pi
+    assert np.allclose(ends, [half, -half], atol=1e-9)
