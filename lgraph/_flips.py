@@ -232,6 +232,7 @@ def seed_crossings(s: Samples, vis: Occlusion, projector: Projector) -> None:
     root = t0 + np.mod(root - t0, 2 * np.pi)  # the first turn from t0 on
     inside = np.isfinite(root) & (root < t0 + span)
     cid, t = np.repeat(c, 2)[inside.ravel()], root[inside]
+    own_q = np.repeat(q, 2)[inside.ravel()]
     if not len(t):
         return
     # the chord holding each crossing: samples are sorted by (curve, t)
@@ -239,8 +240,12 @@ def seed_crossings(s: Samples, vis: Occlusion, projector: Projector) -> None:
     keys = s.cid + (s.t - s.t0[s.cid]) * scale[s.cid]
     j = np.searchsorted(keys, cid + (t - s.t0[cid]) * scale[cid], side="right")
     ok = (j > 0) & (j < len(keys))
-    j, cid, t = j[ok], cid[ok], t[ok]
+    j, cid, t, own_q = j[ok], cid[ok], t[ok], own_q[ok]
     quiet = (s.cid[j - 1] == cid) & (s.cid[j] == cid) & (s.hidden[j - 1] == s.hidden[j])
+    # ... and both ends visible, or both hidden by this ellipsoid (ends hidden
+    # by another surface are refined anyway, and there the crossing may not
+    # show at all)
+    quiet &= ~s.hidden[j] | ((s.cause[j - 1] == own_q) & (s.cause[j] == own_q))
     j, cid, t = j[quiet], cid[quiet], t[quiet]
     if not len(t):
         return
