@@ -18,6 +18,7 @@ ValueError: Torus: r must be smaller than R (a ring torus), got R=1, r=2
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from typing import Any
 
@@ -146,6 +147,84 @@ def _positive(owner: str, default: float | None = None) -> Any:
     return attrs.field(default=default, converter=as_number, validator=finite_positive(owner))
 
 
+#: cost of :func:`_quartic_hits` (units of Surface.hit_cost): ~3 us per ray, ~150 us per call
+_QUARTIC_HIT_COST = 10.0
+_QUARTIC_CALL_COST = 500.0
+
+
+def _quartic_implicit(points: Any, k: float, lin: np.ndarray) -> np.ndarray:
+    """``(|x|^2 + k)^2 - 4 sum_i (w_i . x + w0_i)^2`` with rows ``(w_i, w0_i)``
+    of ``lin``: the implicit form of the torus and of the Dupin cyclide."""
+    p = np.asarray(points, dtype=float)
+    q = np.einsum("...i,...i", p, p) + k
+    forms = p @ lin[:, :3].T + lin[:, 3]
+    return q * q - 4 * np.einsum("...i,...i", forms, forms)
+
+
+def _quartic_hits(
+    origins: np.ndarray,
+    directions: np.ndarray,
+    smax: np.ndarray,
+    own: np.ndarray | None,
+    k: float,
+    lin: np.ndarray,
+    size: float,
+) -> np.ndarray:
+    """Exact ray test for the surfaces :func:`_quartic_implicit` describes.
+
+    Along ``o + s v`` the implicit function is a quartic in ``s``, solved for
+    all rays at once by companion-matrix eigenvalues and polished by
+    Newton's method.  A point on the surface (``ON``) has the root ``s = 0``
+    divided out (a cubic is left); a contour point (``CONTOUR``, the ray
+    tangent there) has it twice (a quadratic).  Roots count when real and in
+    ``(eps, smax)``, ``eps`` the self-hit tolerance of the surface's ``size``.
+    """
+    o = np.asarray(origins, dtype=float).reshape(-1, 3)
+    v = np.asarray(directions, dtype=float).reshape(-1, 3)
+    n = len(o)
+    smax = np.broadcast_to(np.asarray(smax, dtype=float), (n,))
+    own = np.zeros(n, np.int8) if own is None else np.asarray(own)
+    # |x|^2 + k = qa s^2 + qb s + qc, and each linear form = la s + lb
+    qa = np.einsum("ij,ij->i", v, v)
+    qb = 2 * np.einsum("ij,ij->i", o, v)
+    qc = np.einsum("ij,ij->i", o, o) + k
+    la = v @ lin[:, :3].T
+    lb = o @ lin[:, :3].T + lin[:, 3]
+    coef = np.stack(
+        [qa * qa, 2 * qa * qb, qb * qb + 2 * qa * qc - 4 * (la * la).sum(1),
+         2 * qb * qc - 8 * (la * lb).sum(1), qc * qc - 4 * (lb * lb).sum(1)], axis=1,
+    )  # fmt: skip
+    speed = np.sqrt(qa)
+    hit = np.zeros(n, dtype=bool)
+    for degree, rows in (
+        (4, np.flatnonzero((own != ON) & (own != CONTOUR))),
+        (3, np.flatnonzero(own == ON)),
+        (2, np.flatnonzero(own == CONTOUR)),
+    ):
+        if not len(rows):
+            continue
+        p = coef[rows, : degree + 1] / coef[rows, :1]  # monic, s = 0 divided out
+        comp = np.zeros((len(rows), degree, degree))
+        comp[:, 0, :] = -p[:, 1:]
+        comp[:, np.arange(1, degree), np.arange(degree - 1)] = 1.0
+        roots = np.linalg.eigvals(comp)
+        s = roots.real
+        # real roots (a double root's pair may carry an imaginary part ~1e-8)
+        real = np.abs(roots.imag) <= 1e-7 * (np.abs(s) + (size / speed[rows])[:, None])
+        for _ in range(2):  # Newton polish of the real roots
+            val = np.zeros_like(s)
+            der = np.zeros_like(s)
+            for j in range(degree + 1):
+                der = der * s + val
+                val = val * s + p[:, j : j + 1]
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                step = np.where(real & (der != 0), val / der, 0.0)
+            s = s - np.where(np.isfinite(step), step, 0.0)
+        eps = (SELF_HIT_RTOL * size / speed[rows])[:, None]
+        hit[rows] = (real & (s > eps) & (s < smax[rows][:, None])).any(axis=1)
+    return hit
+
+
 @attrs.frozen
 class Torus(Surface):
     """Ring torus ``((R + r cos u2) cos u1, (R + r cos u2) sin u1, r sin u2)``.
@@ -165,8 +244,8 @@ class Torus(Surface):
     r: float = _positive("Torus")
 
     # the exact quartic ray test: about 3 us per ray and 150 us per call
-    hit_cost = 10.0
-    hit_call_cost = 500.0
+    hit_cost = _QUARTIC_HIT_COST
+    hit_call_cost = _QUARTIC_CALL_COST
 
     def __attrs_post_init__(self) -> None:
         if not self.r < self.R:
@@ -208,9 +287,12 @@ class Torus(Surface):
     def implicit(self, points: Any) -> np.ndarray:
         """``(|x|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2)``: zero on the torus,
         negative inside the tube."""
-        p = np.asarray(points, dtype=float)
-        q = np.einsum("...i,...i", p, p) + self.R**2 - self.r**2
-        return q * q - 4 * self.R**2 * (p[..., 0] ** 2 + p[..., 1] ** 2)
+        return _quartic_implicit(points, *self._quartic)
+
+    @property
+    def _quartic(self) -> tuple[float, np.ndarray]:
+        R = self.R
+        return R**2 - self.r**2, np.array([[R, 0.0, 0.0, 0.0], [0.0, R, 0.0, 0.0]])
 
     def hits(
         self,
@@ -219,62 +301,20 @@ class Torus(Surface):
         smax: np.ndarray,
         own: np.ndarray | None = None,
     ) -> np.ndarray:
-        """Exact ray test: along ``o + s v`` the implicit equation is a quartic
-        in ``s``, solved for all rays at once by companion-matrix eigenvalues
-        and polished by Newton's method.  A point on the torus (``ON``) has
-        the root ``s = 0`` divided out (a cubic is left); a contour point
-        (``CONTOUR``, the ray tangent there) has it twice (a quadratic)."""
-        o = np.asarray(origins, dtype=float).reshape(-1, 3)
-        v = np.asarray(directions, dtype=float).reshape(-1, 3)
-        n = len(o)
-        smax = np.broadcast_to(np.asarray(smax, dtype=float), (n,))
-        own = np.zeros(n, np.int8) if own is None else np.asarray(own)
-        R2 = self.R**2
-        a = np.einsum("ij,ij->i", v, v)
-        b = 2 * np.einsum("ij,ij->i", o, v)
-        c = np.einsum("ij,ij->i", o, o) + R2 - self.r**2
-        av = v[:, 0] ** 2 + v[:, 1] ** 2
-        bv = 2 * (o[:, 0] * v[:, 0] + o[:, 1] * v[:, 1])
-        cv = o[:, 0] ** 2 + o[:, 1] ** 2
-        # quartic coefficients, highest first; a > 0 for any real direction
-        coef = np.stack(
-            [a * a, 2 * a * b, b * b + 2 * a * c - 4 * R2 * av, 2 * b * c - 4 * R2 * bv,
-             c * c - 4 * R2 * cv], axis=1,
-        )  # fmt: skip
-        eps = SELF_HIT_RTOL * 2 * (self.R + self.r)
-        hit = np.zeros(n, dtype=bool)
-        for degree, rows in (
-            (4, np.flatnonzero((own != ON) & (own != CONTOUR))),
-            (3, np.flatnonzero(own == ON)),
-            (2, np.flatnonzero(own == CONTOUR)),
-        ):
-            if not len(rows):
-                continue
-            p = coef[rows, : degree + 1] / coef[rows, :1]  # monic, s = 0 divided out
-            comp = np.zeros((len(rows), degree, degree))
-            comp[:, 0, :] = -p[:, 1:]
-            comp[:, np.arange(1, degree), np.arange(degree - 1)] = 1.0
-            roots = np.linalg.eigvals(comp)
-            s = roots.real
-            for _ in range(2):  # Newton polish of the real parts
-                val = np.zeros_like(s)
-                der = np.zeros_like(s)
-                for k in range(degree + 1):
-                    der = der * s + val
-                    val = val * s + p[:, k : k + 1]
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    step = np.where(der != 0, val / der, 0.0)
-                s = s - np.where(np.isfinite(step), step, 0.0)
-            scale = np.abs(s) + 2 * (self.R + self.r) / np.sqrt(a[rows])[:, None]
-            real = np.abs(roots.imag) <= 1e-7 * scale
-            ok = real & (s > eps / np.sqrt(a[rows])[:, None]) & (s < smax[rows][:, None])
-            hit[rows] = ok.any(axis=1)
-        return hit
+        """Exact ray test (:func:`_quartic_hits`)."""
+        size = 2 * (self.R + self.r)
+        return _quartic_hits(origins, directions, smax, own, *self._quartic, size)
 
     def lines_of_curvature(self, n1: int, n2: int) -> list:
         """Meridians ``u1 = const`` and parallels ``u2 = const`` (exact)."""
         d = self.domain
         return parameter_line_batches(self, d.lines(0, n1), d.lines(1, n2))
+
+
+@functools.lru_cache(maxsize=64)
+def _cyclide_size(a: float, b: float, d: float) -> float:
+    """Diagonal of a Dupin cyclide's bounding box (sampled once per shape)."""
+    return DupinCyclide(a, b, d).size
 
 
 @attrs.frozen
@@ -294,6 +334,9 @@ class DupinCyclide(Surface):
     a: float = _positive("DupinCyclide", 2.0)
     b: float = _positive("DupinCyclide", 1.9)
     d: float = _positive("DupinCyclide", 1.0)
+
+    hit_cost = _QUARTIC_HIT_COST
+    hit_call_cost = _QUARTIC_CALL_COST
 
     def __attrs_post_init__(self) -> None:
         if not self.b < self.a:
@@ -322,6 +365,27 @@ class DupinCyclide(Surface):
             b * s1 * (a - d * c2) / den,
             b * s2 * (c * c1 - d) / den,
         )
+
+    def implicit(self, points: Any) -> np.ndarray:
+        """``(|x|^2 + b^2 - d^2)^2 - 4 (a x - c d)^2 - 4 b^2 y^2``: zero on the
+        cyclide, negative inside."""
+        return _quartic_implicit(points, *self._quartic)
+
+    @property
+    def _quartic(self) -> tuple[float, np.ndarray]:
+        a, b, c, d = self.a, self.b, self.c, self.d
+        return b * b - d * d, np.array([[a, 0.0, 0.0, -c * d], [0.0, b, 0.0, 0.0]])
+
+    def hits(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """Exact ray test (:func:`_quartic_hits`)."""
+        size = _cyclide_size(self.a, self.b, self.d)
+        return _quartic_hits(origins, directions, smax, own, *self._quartic, size)
 
     def lines_of_curvature(self, n1: int, n2: int) -> list:
         """Both families of circles: the parameter lines (exact)."""
