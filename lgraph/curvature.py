@@ -45,11 +45,13 @@ def principal_curvatures(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, np
 def _direction_for(k, g11, g12, g22, L11, L12, L22):  # noqa: ANN001, ANN202
     """Parameter direction ``(du1, du2)`` solving ``(L - k G) du = 0``."""
     a11, a12, a22 = L11 - k * g11, L12 - k * g12, L22 - k * g22
-    v1 = np.stack([a12, -a11], axis=-1)  # kernel from the first row
-    v2 = np.stack([a22, -a12], axis=-1)  # kernel from the second row
-    n1 = np.linalg.norm(v1, axis=-1)
-    n2 = np.linalg.norm(v2, axis=-1)
-    return np.where((n1 >= n2)[..., None], v1, v2)
+    # the kernel from the longer row: (a12, -a11) from the first, (a22, -a12)
+    # from the second; |first|^2 - |second|^2 = a11^2 - a22^2
+    first = np.abs(a11) >= np.abs(a22)
+    out = np.empty(np.shape(a11) + (2,))
+    out[..., 0] = np.where(first, a12, a22)
+    out[..., 1] = -np.where(first, a11, a12)
+    return out
 
 
 def principal_directions(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -129,8 +131,11 @@ def principal_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np
     g11 = np.einsum("ij,ij->i", x1, x1)
     g12 = np.einsum("ij,ij->i", x1, x2)
     g22 = np.einsum("ij,ij->i", x2, x2)
-    n = np.cross(x1, x2)
-    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    n = np.empty_like(x1)  # x1 x x2 (np.cross costs ~30 us on small arrays)
+    n[:, 0] = x1[:, 1] * x2[:, 2] - x1[:, 2] * x2[:, 1]
+    n[:, 1] = x1[:, 2] * x2[:, 0] - x1[:, 0] * x2[:, 2]
+    n[:, 2] = x1[:, 0] * x2[:, 1] - x1[:, 1] * x2[:, 0]
+    n /= np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
     x11, x12, x22 = surface.second_derivatives(u1, u2)
     L11 = np.einsum("ij,ij->i", n, x11)
     L12 = np.einsum("ij,ij->i", n, x12)
@@ -143,7 +148,7 @@ def principal_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np
     du = _direction_for(k, g11, g12, g22, L11, L12, L22)
     e = du[:, :1] * x1 + du[:, 1:] * x2
     with np.errstate(invalid="ignore", divide="ignore"):
-        du = du / np.linalg.norm(e, axis=1, keepdims=True)
+        du = du / np.sqrt(np.einsum("ij,ij->i", e, e))[:, None]
         aniso = 2 * root / (np.abs(H - root) + np.abs(H + root))
     return du, aniso
 
@@ -252,20 +257,19 @@ class _FieldLines:
         for h in (0, 1):
             Y = self.sols[h](t).reshape(m, 2, n).transpose(0, 2, 1)  # (m, n, 2)
             bad = self._stopped(Y.reshape(-1, 2), field, which, stop).reshape(m, n)
-            for k in range(m):
-                idx = np.nonzero(bad[k])[0]
-                if not len(idx):
-                    self.ends[h, k] = length
-                    continue
-                a, b = (t[idx[0] - 1], t[idx[0]]) if idx[0] > 0 else (0.0, 0.0)
-                for _ in range(50):
-                    c = 0.5 * (a + b)
-                    yc = self.sols[h](c).reshape(m, 2)[k : k + 1]
-                    if self._stopped(yc, field, which[k : k + 1], stop)[0]:
-                        b = c
-                    else:
-                        a = c
-                self.ends[h, k] = a
+            # the first stop of every line, refined by bisection for all at once
+            stops = bad.any(axis=1)
+            first = np.argmax(bad, axis=1)
+            a = np.where(first > 0, t[np.maximum(first - 1, 0)], 0.0)
+            b = np.where(first > 0, t[first], 0.0)
+            rows = np.arange(m)
+            for _ in range(50):
+                c = 0.5 * (a + b)
+                yc = self.sols[h](c).reshape(m, 2, m)[rows, :, rows]  # line k at c[k]
+                hit = self._stopped(yc, field, which, stop)
+                b = np.where(hit, c, b)
+                a = np.where(hit, a, c)
+            self.ends[h] = np.where(stops, a, length)
             if h == 0:
                 # closed loops: first return to the seed after leaving it
                 P = surface.point(Y[..., 0], Y[..., 1])

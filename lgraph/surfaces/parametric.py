@@ -52,8 +52,11 @@ def _callable(owner: str) -> Callable[[Any, Any, Any], None]:
 
 
 def _stack(*c: np.ndarray) -> np.ndarray:
-    c = np.broadcast_arrays(*c)
-    return np.stack(c, axis=-1)
+    shape = np.broadcast_shapes(*(np.shape(x) for x in c))
+    out = np.empty(shape + (len(c),))
+    for i, x in enumerate(c):
+        out[..., i] = x
+    return out
 
 
 def _uv(u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
