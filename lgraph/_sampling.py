@@ -170,16 +170,16 @@ def refine(
     A chord whose deviation is ``dev`` is split into ``m = ceil(sqrt(dev /
     abs_tol))`` equal parts at once (the deviation of a smooth curve shrinks
     with the square of the chord).  The first split uses the deviation
-    predicted by the second differences of the samples (uniformly spaced on
-    each curve, as the initial samples are), at no evaluation;
-    then every chord is checked at its midpoint and the ones that fail are
-    split again, until none fails.
+    predicted by the second differences of the samples where they are evenly
+    spaced (the initial samples are), at no evaluation; then every chord is
+    checked at its midpoint and the ones that fail are split again, until
+    none fails.
     """
     span = s.t1 - s.t0
     check = s.cid[1:] == s.cid[:-1]
     if settled is not None:
         check &= ~(settled[1:] & settled[:-1])
-    dev = _predicted_deviation(s.xy, s.cid)
+    dev = _predicted_deviation(s.xy, s.cid, s.t)
     split = np.flatnonzero(check & (dev > abs_tol))
     if len(split):
         new = _split(s, projector, split, dev[split], abs_tol)
@@ -202,10 +202,11 @@ def refine(
         check = new[:-1] | new[1:]
 
 
-def _predicted_deviation(xy: np.ndarray, cid: np.ndarray) -> np.ndarray:
+def _predicted_deviation(xy: np.ndarray, cid: np.ndarray, t: np.ndarray) -> np.ndarray:
     """Deviation of every chord from its curve predicted by the second
     differences at its two ends (``|p[i-1] - 2 p[i] + p[i+1]| / 8`` across the
-    secant ``p[i+1] - p[i-1]``); 0 where there is none (curve ends)."""
+    secant ``p[i+1] - p[i-1]``, where ``t`` is evenly spaced); 0 where there
+    is none (curve ends, uneven spacing)."""
     dev = np.zeros(max(len(xy) - 1, 0))
     if len(xy) < 3:
         return dev
@@ -213,7 +214,9 @@ def _predicted_deviation(xy: np.ndarray, cid: np.ndarray) -> np.ndarray:
     sec = xy[2:] - xy[:-2]
     with np.errstate(invalid="ignore", divide="ignore"):
         perp = np.abs(d2[:, 0] * sec[:, 1] - d2[:, 1] * sec[:, 0]) / (8 * np.hypot(*sec.T))
-    perp[~((cid[:-2] == cid[1:-1]) & (cid[1:-1] == cid[2:]) & np.isfinite(perp))] = 0.0
+    dt = np.diff(t)
+    even = np.abs(dt[1:] - dt[:-1]) <= 1e-9 * (np.abs(dt[1:]) + np.abs(dt[:-1]))
+    perp[~((cid[:-2] == cid[1:-1]) & (cid[1:-1] == cid[2:]) & even & np.isfinite(perp))] = 0.0
     dev[1:] = perp  # chord j from its first end, sample j
     np.maximum(dev[:-1], perp, out=dev[:-1])  # and from its second end, sample j + 1
     return dev

@@ -193,7 +193,7 @@ def render(
                 f"CentralProjector: part of node {node} ({nodes[node].item!r}) lies at or "
                 "behind the eye; move the eye farther away"
             )
-    # (column by column: numpy's reductions along a short last axis are slow)
+    # column by column: numpy reduces an (n, 2) array along an axis slowly
     x, y = s.xy[:, 0], s.xy[:, 1]
     finite = np.isfinite(x) & np.isfinite(y)
     if not finite.all():

@@ -18,7 +18,7 @@ def test_predicted_deviation_of_a_circle_is_its_sagitta() -> None:
         [np.column_stack([np.cos(t), np.sin(t)]), 3 * np.column_stack([np.cos(t), np.sin(t)])]
     )
     cid = np.repeat([0, 1], n)
-    dev = _predicted_deviation(xy, cid)
+    dev = _predicted_deviation(xy, cid, np.concatenate([t, t]))
     sagitta = 1 - np.cos(np.pi / (n - 1))
     same = cid[1:] == cid[:-1]
     assert np.allclose(dev[same][: n - 1], sagitta, rtol=0.03)
@@ -26,8 +26,12 @@ def test_predicted_deviation_of_a_circle_is_its_sagitta() -> None:
     assert dev[~same].tolist() == [0.0]  # the step between two curves is no chord
     # a straight line, and too few points, predict nothing
     line = np.column_stack([np.linspace(0, 1, 5), np.linspace(0, 2, 5)])
-    assert np.allclose(_predicted_deviation(line, np.zeros(5, int)), 0.0)
-    assert _predicted_deviation(line[:2], np.zeros(2, int)).tolist() == [0.0]
+    assert np.allclose(_predicted_deviation(line, np.zeros(5, int), np.arange(5.0)), 0.0)
+    assert _predicted_deviation(line[:2], np.zeros(2, int), np.arange(2.0)).tolist() == [0.0]
+    # uneven spacing predicts nothing (its second differences are no curvature)
+    uneven = np.array([0.0, 0.1, 0.5, 0.6, 1.0])
+    bent = np.column_stack([uneven, uneven**2])
+    assert _predicted_deviation(bent, np.zeros(5, int), uneven).tolist() == [0.0] * 4
 
 
 def test_seg_distance_against_brute_force() -> None:
