@@ -5,7 +5,9 @@ ellipsoid's contour, the flip is in closed form; other flips caused by an
 ellipsoid are found by a safeguarded parabola search on a continuous hiding
 margin (about three steps); the rest by K-section on the exact visibility
 test.  Every result is verified by the full test, and both ends of every
-located flip are inserted into the samples.
+located flip are inserted into the samples.  Before refinement,
+:func:`seed_crossings` puts samples on both sides of the crossings of exact
+ellipses that fall between two samples of one state.
 """
 
 from __future__ import annotations
@@ -229,7 +231,7 @@ def seed_crossings(s: Samples, vis: Occlusion, projector: Projector) -> None:
         return
     root = _contour_crossings(s.ellipses[c], vis.q_A[q], vis.q_b[q], vis.q_d[q], projector)
     t0, span = s.t0[c][:, None], (s.t1 - s.t0)[c][:, None]
-    root = t0 + np.mod(root - t0, 2 * np.pi)  # the first turn from t0 on
+    root = t0 + np.mod(root - t0, 2 * np.pi)  # the first turn from t0 on (spans <= 2 pi)
     inside = np.isfinite(root) & (root < t0 + span)
     cid, t = np.repeat(c, 2)[inside.ravel()], root[inside]
     own_q = np.repeat(q, 2)[inside.ravel()]
