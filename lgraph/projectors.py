@@ -19,6 +19,7 @@ import attrs
 import numpy as np
 
 from ._validate import vector3
+from .geometry.vectors import cross3
 
 __all__ = ["Projector", "ParallelProjector", "CentralProjector"]
 
@@ -29,9 +30,9 @@ def _frame(toward_viewer: np.ndarray, up: np.ndarray) -> tuple[np.ndarray, np.nd
     u = up / np.linalg.norm(up)
     if abs(float(u @ e3)) > 1 - 1e-9:  # looking along the up vector: pick another
         u = np.array([0.0, 1.0, 0.0]) if abs(e3[1]) < 0.9 else np.array([1.0, 0.0, 0.0])
-    e1 = np.cross(u, e3)
+    e1 = cross3(u, e3)
     e1 /= np.linalg.norm(e1)
-    e2 = np.cross(e3, e1)
+    e2 = cross3(e3, e1)
     return e1, e2, e3
 
 
