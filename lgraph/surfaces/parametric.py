@@ -150,11 +150,6 @@ def _positive(owner: str, default: float | None = None) -> Any:
     return attrs.field(default=default, converter=as_number, validator=finite_positive(owner))
 
 
-#: cost of :func:`_quartic_hits` (units of Surface.hit_cost): ~3 us per ray, ~150 us per call
-_QUARTIC_HIT_COST = 10.0
-_QUARTIC_CALL_COST = 500.0
-
-
 def _quartic_implicit(points: Any, k: float, lin: np.ndarray) -> np.ndarray:
     """``(|x|^2 + k)^2 - 4 sum_i (w_i . x + w0_i)^2`` with rows ``(w_i, w0_i)``
     of ``lin``: the implicit form of the torus and of the Dupin cyclide."""
@@ -228,8 +223,40 @@ def _quartic_hits(
     return hit
 
 
+class _QuarticSurface(Surface):
+    """A surface ``(|x|^2 + k)^2 = 4 sum_i (w_i . x + w0_i)^2`` (``_quartic``
+    gives ``k`` and the rows ``(w_i, w0_i)``) with the exact ray test of
+    :func:`_quartic_hits`."""
+
+    # the quartic ray test costs about 3 us per ray and 150 us per call
+    hit_cost = 10.0
+    hit_call_cost = 500.0
+
+    @property
+    def _quartic(self) -> tuple[float, np.ndarray]:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def _quartic_size(self) -> float:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def implicit(self, points: Any) -> np.ndarray:
+        """The implicit function: zero on the surface, negative inside."""
+        return _quartic_implicit(points, *self._quartic)
+
+    def hits(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """Exact ray test (:func:`_quartic_hits`)."""
+        k, lin = self._quartic
+        return _quartic_hits(origins, directions, smax, own, k, lin, self._quartic_size())
+
+
 @attrs.frozen
-class Torus(Surface):
+class Torus(_QuarticSurface):
     """Ring torus ``((R + r cos u2) cos u1, (R + r cos u2) sin u1, r sin u2)``.
 
     ``u1`` runs around the axis (``z``), ``u2`` around the tube; both periodic.
@@ -245,10 +272,6 @@ class Torus(Surface):
 
     R: float = _positive("Torus")
     r: float = _positive("Torus")
-
-    # the exact quartic ray test: about 3 us per ray and 150 us per call
-    hit_cost = _QUARTIC_HIT_COST
-    hit_call_cost = _QUARTIC_CALL_COST
 
     def __attrs_post_init__(self) -> None:
         if not self.r < self.R:
@@ -287,26 +310,14 @@ class Torus(Surface):
         x22 = _stack(-self.r * c2 * c1, -self.r * c2 * s1, -self.r * s2)
         return x11, x12, x22
 
-    def implicit(self, points: Any) -> np.ndarray:
-        """``(|x|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2)``: zero on the torus,
-        negative inside the tube."""
-        return _quartic_implicit(points, *self._quartic)
-
     @property
     def _quartic(self) -> tuple[float, np.ndarray]:
+        """``(|x|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2)``."""
         R = self.R
         return R**2 - self.r**2, np.array([[R, 0.0, 0.0, 0.0], [0.0, R, 0.0, 0.0]])
 
-    def hits(
-        self,
-        origins: np.ndarray,
-        directions: np.ndarray,
-        smax: np.ndarray,
-        own: np.ndarray | None = None,
-    ) -> np.ndarray:
-        """Exact ray test (:func:`_quartic_hits`)."""
-        size = 2 * (self.R + self.r)
-        return _quartic_hits(origins, directions, smax, own, *self._quartic, size)
+    def _quartic_size(self) -> float:
+        return 2 * (self.R + self.r)
 
     def lines_of_curvature(self, n1: int, n2: int) -> list:
         """Meridians ``u1 = const`` and parallels ``u2 = const`` (exact)."""
@@ -321,7 +332,7 @@ def _cyclide_size(a: float, b: float, d: float) -> float:
 
 
 @attrs.frozen
-class DupinCyclide(Surface):
+class DupinCyclide(_QuarticSurface):
     """Ring Dupin cyclide with parameters ``a > b > 0``, ``c = sqrt(a^2 - b^2) < d < a``.
 
     ``x = (d (c - a cos u1 cos u2) + b^2 cos u1, b sin u1 (a - d cos u2),
@@ -337,9 +348,6 @@ class DupinCyclide(Surface):
     a: float = _positive("DupinCyclide", 2.0)
     b: float = _positive("DupinCyclide", 1.9)
     d: float = _positive("DupinCyclide", 1.0)
-
-    hit_cost = _QUARTIC_HIT_COST
-    hit_call_cost = _QUARTIC_CALL_COST
 
     def __attrs_post_init__(self) -> None:
         if not self.b < self.a:
@@ -369,26 +377,14 @@ class DupinCyclide(Surface):
             b * s2 * (c * c1 - d) / den,
         )
 
-    def implicit(self, points: Any) -> np.ndarray:
-        """``(|x|^2 + b^2 - d^2)^2 - 4 (a x - c d)^2 - 4 b^2 y^2``: zero on the
-        cyclide, negative inside."""
-        return _quartic_implicit(points, *self._quartic)
-
     @property
     def _quartic(self) -> tuple[float, np.ndarray]:
+        """``(|x|^2 + b^2 - d^2)^2 - 4 (a x - c d)^2 - 4 b^2 y^2``."""
         a, b, c, d = self.a, self.b, self.c, self.d
         return b * b - d * d, np.array([[a, 0.0, 0.0, -c * d], [0.0, b, 0.0, 0.0]])
 
-    def hits(
-        self,
-        origins: np.ndarray,
-        directions: np.ndarray,
-        smax: np.ndarray,
-        own: np.ndarray | None = None,
-    ) -> np.ndarray:
-        """Exact ray test (:func:`_quartic_hits`)."""
-        size = _cyclide_size(self.a, self.b, self.d)
-        return _quartic_hits(origins, directions, smax, own, *self._quartic, size)
+    def _quartic_size(self) -> float:
+        return _cyclide_size(self.a, self.b, self.d)
 
     def lines_of_curvature(self, n1: int, n2: int) -> list:
         """Both families of circles: the parameter lines (exact)."""
