@@ -516,3 +516,16 @@ def test_dash_polyline_edge_cases() -> None:
     # Corners inside a dash are kept.
     (d,) = dash_polyline(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]), (5, 1))
     assert d.tolist() == [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]
+
+
+def test_pdf_falls_back_to_decimals_past_the_integer_limit(tmp_path: Path) -> None:
+    """At 6 decimals a 3000 pt page would need integers past 2^31 (the limit of
+    PDF readers): the writer then formats decimals, with no scaling matrix."""
+    d = Drawing(
+        strokes=(stroke([[0, 0], [1, 1]]),), page=Page(3000, 3000, 10)
+    )  # fmt: skip
+    data = d.save(tmp_path / "big.pdf", compress=False, precision=6).read_bytes()
+    assert b"10.000000 10.000000 m\n2990.000000 2990.000000 l\nS" in data
+    assert b"0.000001 0 0 0.000001 0 0 cm" not in data and b"0.5 w" in data
+    small = d.save(tmp_path / "small.pdf", compress=False, precision=5).read_bytes()
+    assert b"0.00001 0 0 0.00001 0 0 cm" in small and b"1000000 1000000 m" in small

@@ -159,7 +159,7 @@ def write_pdf(
     runs = list(page_runs(drawing))
     values = np.concatenate([pts.ravel() for pts, _ in runs]) if runs else np.empty(0)
     unit = 10.0**precision
-    if len(values) and np.abs(values).max() * unit >= _INT_LIMIT:  # pragma: no cover - huge page
+    if len(values) and np.abs(values).max() * unit >= _INT_LIMIT:  # a huge page
         unit, f = 1.0, f"%.{precision}f"
     else:
         # integers in units of 10**-precision pt under a scaling matrix: about
