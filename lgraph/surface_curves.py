@@ -222,7 +222,8 @@ def _tangent4(a: Any, b: Any, z: np.ndarray) -> np.ndarray:
     J = np.concatenate([_jac(a, z[None, :2]), -_jac(b, z[None, 2:])], axis=2)[0]
     t = np.array([(-1) ** k * np.linalg.det(np.delete(J, k, axis=1)) for k in range(4)])
     speed = np.linalg.norm(J[:, :2] @ t[:2])
-    return t / speed
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return t / speed  # NaN where the surfaces' tangent planes degenerate (a pole)
 
 
 def _inside(surface: Any, uv: np.ndarray) -> bool:
@@ -246,6 +247,8 @@ def _march(a: Any, b: Any, z0: np.ndarray, h: float, nmax: int) -> tuple[np.ndar
         closed = False
         for k in range(nmax):
             t = _tangent4(a, b, z)
+            if not np.isfinite(t).all():
+                break  # a degenerate point (a pole of a parametrization): stop here
             if t @ tprev < 0:
                 t = -t
             zn, res = _correct(a, b, (z + h * t)[None])
