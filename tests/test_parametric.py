@@ -74,6 +74,13 @@ def test_analytic_derivatives_match_differences(S):
     fd = lg.ParametricSurface(S.point, d.u1, d.u2)
     for a, b in zip(S.derivatives(u1, u2), fd.derivatives(u1, u2)):
         assert np.abs(a - b).max() < 1e-7 * (1 + np.abs(a).max())
+    # second derivatives too (25-point stencils in one call), also on a 2-d grid
+    for a, b in zip(S.second_derivatives(u1, u2), fd.second_derivatives(u1, u2)):
+        assert np.abs(a - b).max() < 1e-6 * (1 + np.abs(a).max())
+    g1, g2 = np.meshgrid(u1[:4], u2[:3], indexing="ij")
+    for a, b in zip(S.second_derivatives(g1, g2), fd.second_derivatives(g1, g2)):
+        assert a.shape == b.shape == (4, 3, 3)
+        assert np.abs(a - b).max() < 1e-6 * (1 + np.abs(a).max())
 
 
 @pytest.mark.parametrize("proj", PROJECTORS)
