@@ -130,8 +130,7 @@ class Occlusion:
         if self.nq:
             pt, q = self._quadric_pairs(xy)
             if len(pt) == len(xyz) and self.nq == 1:  # one quadric, every point in its box
-                o, v, sm, ow = xyz, dirs, smax, owner
-                kd = kind
+                o, v, sm, ow, kd = xyz, dirs, smax, owner, kind
             else:
                 o, v, sm, ow, kd = xyz[pt], dirs[pt], smax[pt], owner[pt], kind[pt]
             own = np.where(ow == self.q_node[q], kd, OFF).astype(np.int8)

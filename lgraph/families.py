@@ -62,8 +62,8 @@ def parameter_line_batches(
         first = idx < n1  # a line u1 = const, running along u2
         c = const[idx]
         out = np.empty((len(c), 2))
-        np.copyto(out[:, 0], np.where(first, c, t))
-        np.copyto(out[:, 1], np.where(first, t, c))
+        out[:, 0] = np.where(first, c, t)
+        out[:, 1] = np.where(first, t, c)
         return out
 
     names = (family1,) * n1 + (family2,) * n2
