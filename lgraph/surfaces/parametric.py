@@ -29,6 +29,7 @@ from .._tolerance import SELF_HIT_RTOL
 from .._validate import as_number, finite_positive, interval
 from ..families import parameter_line_batches
 from ._base import CONTOUR, ON, Domain, Surface, _bool_pair
+from ._polyroots import has_root_in
 
 __all__ = [
     "ParametricSurface",
@@ -171,10 +172,10 @@ def _quartic_hits(
     """Exact ray test for the surfaces :func:`_quartic_implicit` describes.
 
     Along ``o + s v`` the implicit function is a quartic in ``s``, solved for
-    all rays at once by companion-matrix eigenvalues and polished by
-    Newton's method.  A point on the surface (``ON``) has the root ``s = 0``
-    divided out (a cubic is left); a contour point (``CONTOUR``, the ray
-    tangent there) has it twice (a quadratic).  Roots count when real and in
+    all rays at once (:func:`~lgraph.surfaces._polyroots.has_root_in`).  A
+    point on the surface (``ON``) has the root ``s = 0`` divided out (a cubic
+    is left); a contour point (``CONTOUR``, the ray tangent there) has it
+    twice (a quadratic).  Roots count when real and in
     ``(eps, smax)``, ``eps`` the self-hit tolerance of the surface's ``size``.
     """
     o = np.asarray(origins, dtype=float).reshape(-1, 3)
@@ -192,34 +193,18 @@ def _quartic_hits(
         [qa * qa, 2 * qa * qb, qb * qb + 2 * qa * qc - 4 * (la * la).sum(1),
          2 * qb * qc - 8 * (la * lb).sum(1), qc * qc - 4 * (lb * lb).sum(1)], axis=1,
     )  # fmt: skip
-    speed = np.sqrt(qa)
+    speed = np.sqrt(qa)  # s is in units of |v|
     hit = np.zeros(n, dtype=bool)
     for degree, rows in (
         (4, np.flatnonzero((own != ON) & (own != CONTOUR))),
         (3, np.flatnonzero(own == ON)),
         (2, np.flatnonzero(own == CONTOUR)),
     ):
-        if not len(rows):
-            continue
-        p = coef[rows, : degree + 1] / coef[rows, :1]  # monic, s = 0 divided out
-        comp = np.zeros((len(rows), degree, degree))
-        comp[:, 0, :] = -p[:, 1:]
-        comp[:, np.arange(1, degree), np.arange(degree - 1)] = 1.0
-        roots = np.linalg.eigvals(comp)
-        s = roots.real
-        # real roots (a double root's pair may carry an imaginary part ~1e-8)
-        real = np.abs(roots.imag) <= 1e-7 * (np.abs(s) + (size / speed[rows])[:, None])
-        for _ in range(2):  # Newton polish of the real roots
-            val = np.zeros_like(s)
-            der = np.zeros_like(s)
-            for j in range(degree + 1):
-                der = der * s + val
-                val = val * s + p[:, j : j + 1]
-            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-                step = np.where(real & (der != 0), val / der, 0.0)
-            s = s - np.where(np.isfinite(step), step, 0.0)
-        eps = (SELF_HIT_RTOL * size / speed[rows])[:, None]
-        hit[rows] = (real & (s > eps) & (s < smax[rows][:, None])).any(axis=1)
+        if len(rows):  # the last 4 - degree coefficients vanish: s = 0 divided out
+            scale = size / speed[rows]
+            hit[rows] = has_root_in(
+                coef[rows, : degree + 1], SELF_HIT_RTOL * scale, smax[rows], scale
+            )
     return hit
 
 

@@ -37,6 +37,7 @@ from lgraph import CurveBatch, Domain, Surface
 from lgraph._own import CONTOUR, ON
 from lgraph._tolerance import SELF_HIT_RTOL
 from lgraph.families import parameter_line_batches
+from lgraph.surfaces._polyroots import has_root_in
 
 __all__ = ["DupinCyclide"]
 
@@ -269,7 +270,7 @@ class DupinCyclide(Surface):
             sel = (kinds == kind) if kind else ((kinds != ON) & (kinds != CONTOUR))
             if sel.any():
                 c = coef[sel][:, : 5 - drop]  # highest power first; drop the s^0 (s^1) terms
-                hit[sel] = _has_root(c, eps, smx[sel], self.size)
+                hit[sel] = has_root_in(c, eps, smx[sel], self.size)
         out[idx] = hit
         return out.reshape(np.shape(origins)[:-1])
 
@@ -288,30 +289,3 @@ class DupinCyclide(Surface):
             2 * A1 * A0 - 8 * (l0 * l1 + m0 * m1),
             A0 * A0 - 4 * (l0 * l0 + m0 * m0),
         ])  # fmt: skip
-
-
-def _has_root(coef: np.ndarray, lower: float, upper: np.ndarray, size: float) -> np.ndarray:
-    """Whether the real polynomials (rows, highest power first, leading
-    coefficient > 0) have a real root in ``(lower, upper)``."""
-    deg = coef.shape[1] - 1
-    n = len(coef)
-    monic = coef[:, 1:] / coef[:, :1]
-    comp = np.zeros((n, deg, deg))
-    comp[:, 0, :] = -monic
-    if deg > 1:
-        comp[:, np.arange(1, deg), np.arange(deg - 1)] = 1.0
-    roots = np.linalg.eigvals(comp)
-    real = np.abs(roots.imag) <= 1e-7 * (size + np.abs(roots.real))
-    s = roots.real.copy()
-    for _ in range(3):  # Newton polish on the undeflated-by-eigen polynomial
-        f = np.zeros_like(s)
-        df = np.zeros_like(s)
-        for k in range(deg + 1):
-            df = df * s + f
-            f = f * s + coef[:, k, None]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            step = np.where(df != 0, f / df, 0.0)
-        step = np.where(np.abs(step) < 1e-3 * (size + np.abs(s)), step, 0.0)
-        s = s - step
-    good = real & (s > lower) & (s < upper[:, None])
-    return good.any(axis=1)

@@ -1,0 +1,49 @@
+"""Real roots of many small polynomials at once (the quartic ray tests).
+
+>>> import numpy as np
+>>> coef = np.array([[1.0, 0.0, -1.0], [1.0, 0.0, 1.0]])  # s^2 - 1, s^2 + 1
+>>> has_root_in(coef, 0.0, np.array([2.0, 2.0]), 1.0).tolist()
+[True, False]
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+__all__ = ["has_root_in"]
+
+
+def has_root_in(coef: np.ndarray, lower: Any, upper: Any, size: Any) -> np.ndarray:
+    """Whether each real polynomial (rows of ``coef``, highest power first,
+    leading coefficient non-zero) has a real root in ``(lower, upper)``.
+
+    Roots are the eigenvalues of the companion matrices, all rows at once.  A
+    root counts as real when its imaginary part is below ``1e-7`` of ``size +
+    |root|`` (a double root splits into a pair ~1e-8 apart); only real roots
+    are then polished by Newton steps (small ones: a complex pair's real part
+    must not wander off into a false root).  ``lower``, ``upper`` and ``size``
+    are scalars or one value per row.
+    """
+    coef = np.asarray(coef, dtype=float)
+    n, deg = len(coef), coef.shape[1] - 1
+    lower, upper, size = (np.broadcast_to(np.asarray(x, float), (n,))[:, None]
+                          for x in (lower, upper, size))  # fmt: skip
+    monic = coef[:, 1:] / coef[:, :1]
+    comp = np.zeros((n, deg, deg))
+    comp[:, 0, :] = -monic
+    comp[:, np.arange(1, deg), np.arange(deg - 1)] = 1.0
+    roots = np.linalg.eigvals(comp)
+    s = roots.real.copy()
+    real = np.abs(roots.imag) <= 1e-7 * (size + np.abs(s))
+    for _ in range(3):
+        f = np.zeros_like(s)
+        df = np.zeros_like(s)
+        for k in range(deg + 1):
+            df = df * s + f
+            f = f * s + coef[:, k, None]
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            step = np.where(real & (df != 0), f / df, 0.0)
+        s = s - np.where(np.abs(step) < 1e-3 * (size + np.abs(s)), step, 0.0)
+    return (real & (s > lower) & (s < upper)).any(axis=1)
