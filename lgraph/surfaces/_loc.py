@@ -91,6 +91,7 @@ cones with the same vertex are the third family of the system).
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -218,12 +219,7 @@ def one_sheet_lines(surface: Any, n1: int, n2: int) -> list[CurveBatch]:
     tr, s, big = _transverse(a, b)
     T = float(np.arcsinh(h / c))  # loops with |t| <= T lie in |z| <= h
 
-    def to_xyz(X: np.ndarray) -> np.ndarray:
-        x = np.empty_like(X)
-        x[..., tr[0]] = X[..., 1]
-        x[..., tr[1]] = X[..., 2]
-        x[..., 2] = X[..., 0]
-        return x
+    to_xyz = functools.partial(_scatter, order=np.array([2, tr[0], tr[1]]))
 
     ts = spread(
         lambda u: np.stack(
@@ -288,12 +284,7 @@ def two_sheets_lines(surface: Any, n1: int, n2: int) -> list[CurveBatch]:
     c2 = c * c
     rot = s == big
 
-    def to_xyz(X: np.ndarray) -> np.ndarray:
-        x = np.empty_like(X)
-        x[..., tr[0]] = X[..., 0]
-        x[..., tr[1]] = X[..., 1]
-        x[..., 2] = X[..., 2]
-        return x
+    to_xyz = functools.partial(_scatter, order=np.array([tr[0], tr[1], 2]))
 
     def meridian(sheet: Any, t: Any, phi: Any) -> np.ndarray:
         sheet, t, phi = np.broadcast_arrays(*(np.asarray(v, float) for v in (sheet, t, phi)))
@@ -366,12 +357,7 @@ def elliptic_paraboloid_lines(surface: Any, n1: int, n2: int) -> list[CurveBatch
     P, Q = P / 2, Q / 2
     D = Q - P
 
-    def to_xyz(X: np.ndarray) -> np.ndarray:
-        x = np.empty_like(X)
-        x[..., tr[0]] = X[..., 0]
-        x[..., tr[1]] = X[..., 1]
-        x[..., 2] = X[..., 2]
-        return x
+    to_xyz = functools.partial(_scatter, order=np.array([tr[0], tr[1], 2]))
 
     if D == 0:  # rotational: parallels z = const and meridians
         r = np.sqrt(h)
