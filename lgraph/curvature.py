@@ -331,27 +331,15 @@ class _FieldLines:
     def batch(self, family: str, keep: np.ndarray | None = None) -> Any:
         from .curves import CurveBatch
 
-        d = self.domain
         ks = np.arange(self.m) if keep is None else np.asarray(keep)
         ks = ks[(self.ends[0, ks] + self.ends[1, ks]) > 0]
-        surface = self.surface
-
-        def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            idx = np.asarray(idx)
-            uv = np.empty((len(idx), 2))
-            for c in np.unique(idx):
-                sel = idx == c
-                uv[sel] = self.uv(int(ks[c]), t[sel])
-            uv = d.wrap(uv)
-            return surface.point(uv[:, 0], uv[:, 1]), uv
-
-        return CurveBatch(
+        return CurveBatch.from_curves(
+            self.surface,
             family,
             -self.ends[1, ks],
             self.ends[0, ks],
-            evaluate,
+            lambda c, t: self.uv(int(ks[c]), t),
             closed=self.closed[ks],
-            surface=surface,
         )
 
     def samples(self, k: int, n: int = 200) -> np.ndarray:
@@ -465,25 +453,13 @@ def _pieces_batch(surface: Any, family: str, pieces: list) -> Any:
     """One batch of trimmed field lines ``(lines, k, ta, tb, closed)``."""
     from .curves import CurveBatch
 
-    d = surface.domain
-
-    def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        idx = np.asarray(idx)
-        uv = np.empty((len(idx), 2))
-        for c in np.unique(idx):
-            sel = idx == c
-            lines, k = pieces[c][0], pieces[c][1]
-            uv[sel] = lines.uv(k, t[sel])
-        uv = d.wrap(uv)
-        return surface.point(uv[:, 0], uv[:, 1]), uv
-
-    return CurveBatch(
+    return CurveBatch.from_curves(
+        surface,
         family,
         [p[2] for p in pieces],
         [p[3] for p in pieces],
-        evaluate,
+        lambda c, t: pieces[c][0].uv(pieces[c][1], t),
         closed=[p[4] for p in pieces],
-        surface=surface,
     )
 
 

@@ -231,3 +231,31 @@ class CurveBatch:
             return surface.point(p[:, 0], p[:, 1]), p
 
         return cls(family, t0, t1, evaluate, closed=closed, surface=surface, **kw)
+
+    @classmethod
+    def from_curves(
+        cls,
+        surface: Any,
+        family: str,
+        t0: Any,
+        t1: Any,
+        uv_of: Callable[[int, np.ndarray], np.ndarray],
+        closed: Any = False,
+        adjust: Callable[[np.ndarray], np.ndarray] | None = None,
+        **kw: Any,
+    ) -> CurveBatch:
+        """A batch of curves each with its own parameter-plane function
+        ``uv_of(k, t) -> (n, 2)`` (one call per curve present);
+        ``adjust(uv)`` (optional) corrects all parameters at once before the
+        periodic ones are wrapped and the others clipped to the domain."""
+        domain = surface.domain
+
+        def uv(idx: np.ndarray, t: np.ndarray) -> np.ndarray:
+            idx = np.asarray(idx)
+            out = np.empty((len(idx), 2))
+            for k in np.unique(idx).tolist():
+                sel = idx == k
+                out[sel] = uv_of(k, t[sel])
+            return domain.wrap(out if adjust is None else adjust(out))
+
+        return cls.from_uv(surface, family, t0, t1, uv, closed=closed, **kw)

@@ -296,28 +296,14 @@ def _contour_batch(surface: Surface, projector: Projector, curves: list) -> Curv
     from ..curves import CurveBatch
 
     objs = [_ContourCurve(surface, p, closed) for p, closed in curves]
-    d = surface.domain
-
-    def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        idx = np.asarray(idx)
-        uv = np.empty((len(idx), 2))
-        for k in np.unique(idx):
-            sel = idx == k
-            uv[sel] = objs[k](t[sel])
-        uv = project_to_contour(surface, projector, uv)
-        for i in (0, 1):
-            if not d.periodic[i]:
-                uv[:, i] = np.clip(uv[:, i], *d.range(i))
-        uv = surface.domain.wrap(uv)
-        return surface.point(uv[:, 0], uv[:, 1]), uv
-
-    return CurveBatch(
+    return CurveBatch.from_curves(
+        surface,
         "contour",
         np.zeros(len(objs)),
-        np.array([o.length for o in objs]),
-        evaluate,
-        closed=np.array([o.closed for o in objs]),
-        surface=surface,
+        [o.length for o in objs],
+        lambda k, t: objs[k](t),
+        closed=[o.closed for o in objs],
+        adjust=lambda uv: project_to_contour(surface, projector, uv),
         own=CONTOUR,
     )
 
