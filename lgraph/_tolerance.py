@@ -77,3 +77,29 @@ RULED_XTOL = 4e-16
 RULED_CHUNK = 1 << 21
 #: a ruled surface is developable when det(y', z, z') is below this (relative)
 RULED_DEVELOPABLE_RTOL = 1e-7
+
+# -- numeric line fields (lgraph.fieldlines) ---------------------------------
+#: local error allowed per integration step, relative to the parameter spans
+FIELD_RTOL = 2e-11
+#: first and largest step, relative to the surface's size
+FIELD_FIRST_STEP = 1e-2
+FIELD_MAX_STEP = 5e-2
+#: a line whose step must shrink below this (relative to the size) to stay
+#: valid has reached a singular point (umbilic, pole, edge of the field) and stops
+FIELD_MIN_STEP = 1e-9
+#: longest half line (each way from its seed), in sizes
+FIELD_MAX_LENGTH = 3.0
+#: most integration steps of one family (all lines together): bounds the work
+FIELD_MAX_ITERATIONS = 20_000
+#: a line stops where the principal field's anisotropy (k2 - k1) / (|k1| + |k2|)
+#: falls below this (an umbilic) ...
+UMBILIC_STOP = 2e-3
+#: ... and an asymptotic line where -K / (H^2 + |K|) does (a parabolic line)
+PARABOLIC_STOP = 1e-2
+#: a line closes when it passes this close to its seed (scaled parameters)
+FIELD_CLOSE_RTOL = 1e-7
+#: a new line retraces a drawn one when its seed lies this close to it (of the size)
+FIELD_DUPLICATE_RTOL = 1e-5
+#: the parameter lines are the field's lines when g12 and L12 (lines of
+#: curvature) or L11 and L22 (asymptotic lines) vanish to this, relative
+PARAMETER_LINES_RTOL = 1e-7

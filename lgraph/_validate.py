@@ -106,3 +106,14 @@ def interval(owner: str, name: str, value: Any) -> tuple[float, float]:
             f"{owner}: {name} must be a pair (lo, hi) of finite numbers with lo < hi, got {value!r}"
         )
     return lo, hi
+
+
+def one_of(owner: str, allowed: tuple[str, ...]) -> Validator:
+    """Validator: one of the strings ``allowed``."""
+
+    def check(_inst: Any, attribute: Any, value: Any) -> None:
+        if not (isinstance(value, str) and value in allowed):
+            choices = ", ".join(repr(a) for a in allowed)
+            raise ValueError(f"{owner}: {attribute.name} must be one of {choices}, got {value!r}")
+
+    return check

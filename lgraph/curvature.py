@@ -116,16 +116,11 @@ def curvature_equation_angle(surface: Any, uv: np.ndarray, duv: np.ndarray) -> n
 
 
 # ---------------------------------------------------------------------------
-# numeric lines of curvature (and other direction-field lines)
+# line fields: the two principal directions, the two asymptotic directions
 # ---------------------------------------------------------------------------
-#: stop a line where ``(k2 - k1) / (|k1| + |k2| + 1/size)`` falls below this (umbilic)
-UMBILIC_RTOL = 2e-3
-
-
-def principal_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Parameter-plane principal direction ``(du1, du2)`` of unit 3-D length for
-    the principal curvature ``k1`` (``which == 0``) or ``k2`` (``which == 1``),
-    and the anisotropy ``(k2 - k1) / (|k1| + |k2|)`` (0 at umbilics)."""
+def _frame(surface: Any, uv: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``x1, x2, (g11, g12, g22), (L11, L12, L22)`` at rows of ``uv`` (one call each
+    of ``derivatives`` and ``second_derivatives``)."""
     u1, u2 = uv[:, 0], uv[:, 1]
     x1, x2 = surface.derivatives(u1, u2)
     g11 = np.einsum("ij,ij->i", x1, x1)
@@ -135,431 +130,97 @@ def principal_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np
     n[:, 0] = x1[:, 1] * x2[:, 2] - x1[:, 2] * x2[:, 1]
     n[:, 1] = x1[:, 2] * x2[:, 0] - x1[:, 0] * x2[:, 2]
     n[:, 2] = x1[:, 0] * x2[:, 1] - x1[:, 1] * x2[:, 0]
-    n /= np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        n /= np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
     x11, x12, x22 = surface.second_derivatives(u1, u2)
-    L11 = np.einsum("ij,ij->i", n, x11)
-    L12 = np.einsum("ij,ij->i", n, x12)
-    L22 = np.einsum("ij,ij->i", n, x22)
-    g = g11 * g22 - g12 * g12
-    H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
-    K = (L11 * L22 - L12 * L12) / g
-    root = np.sqrt(np.maximum(H * H - K, 0.0))
-    k = np.where(which == 0, H - root, H + root)
-    du = _direction_for(k, g11, g12, g22, L11, L12, L22)
-    e = du[:, :1] * x1 + du[:, 1:] * x2
-    with np.errstate(invalid="ignore", divide="ignore"):
-        du = du / np.sqrt(np.einsum("ij,ij->i", e, e))[:, None]
-        aniso = 2 * root / (np.abs(H - root) + np.abs(H + root))
-    return du, aniso
+    L = (np.einsum("ij,ij->i", n, x11), np.einsum("ij,ij->i", n, x12),
+         np.einsum("ij,ij->i", n, x22))  # fmt: skip
+    return x1, x2, (g11, g12, g22), L
 
 
-def asymptotic_field(surface: Any, uv: np.ndarray, which: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Parameter-plane asymptotic direction (``II(du) = 0``) of unit 3-D length,
-    one of two (``which``), and ``-K / (H^2 + |K|)`` (positive where ``K < 0``)."""
-    u1, u2 = uv[:, 0], uv[:, 1]
-    g11, g12, g22, L11, L12, L22 = fundamental_forms(surface, u1, u2)
-    x1, x2 = surface.derivatives(u1, u2)
-    g = g11 * g22 - g12 * g12
-    K = (L11 * L22 - L12 * L12) / g
-    H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
-    disc = np.sqrt(np.maximum(L12 * L12 - L11 * L22, 0.0))
-    sgn = np.where(which == 0, 1.0, -1.0)
-    # L11 a^2 + 2 L12 a b + L22 b^2 = 0: (a, b) = (-L12 +- disc, L11) or (L22, -L12 -+ disc)
-    va = np.stack([-L12 + sgn * disc, L11], axis=1)
-    vb = np.stack([L22, -L12 - sgn * disc], axis=1)
-    use_a = np.linalg.norm(va, axis=1) >= np.linalg.norm(vb, axis=1)
-    du = np.where(use_a[:, None], va, vb)
-    e = du[:, :1] * x1 + du[:, 1:] * x2
+def _unit(du: np.ndarray, g11: np.ndarray, g12: np.ndarray, g22: np.ndarray) -> np.ndarray:
+    """Parameter directions ``(n, 2)`` scaled to unit 3-D length (metric ``g``)."""
+    a, b = du[:, 0], du[:, 1]
     with np.errstate(invalid="ignore", divide="ignore"):
-        du = du / np.linalg.norm(e, axis=1, keepdims=True)
+        return du / np.sqrt(g11 * a * a + 2 * g12 * a * b + g22 * b * b)[:, None]
+
+
+def principal_field(surface: Any, uv: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The line field of the principal directions at rows of ``uv`` ``(n, 2)``.
+
+    Returns ``(D, strength, G)``: ``D[:, b]`` is the parameter direction
+    ``(du1, du2)`` of unit 3-D length belonging to ``k1`` (``b = 0``) and ``k2``
+    (``b = 1``), ``strength = (k2 - k1) / (|k1| + |k2|)`` (0 at umbilics, NaN at
+    a flat umbilic or a singular point) and ``G = (g11, g12, g22)`` columns.
+
+    >>> import numpy as np
+    >>> import lgraph as lg
+    >>> D, s, G = principal_field(lg.Torus(3, 1), np.array([[0.3, 0.2]]))
+    >>> bool(np.allclose(np.abs(D[0]) @ [1, 1] > 0, True)), bool(s[0] > 0.5)
+    (True, True)
+    """
+    _x1, _x2, (g11, g12, g22), (L11, L12, L22) = _frame(surface, uv)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        g = g11 * g22 - g12 * g12
+        H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
+        K = (L11 * L22 - L12 * L12) / g
+        root = np.sqrt(np.maximum(H * H - K, 0.0))
+        strength = 2 * root / (np.abs(H - root) + np.abs(H + root))
+    D = np.empty((len(uv), 2, 2))
+    for b, k in enumerate((H - root, H + root)):
+        D[:, b] = _unit(_direction_for(k, g11, g12, g22, L11, L12, L22), g11, g12, g22)
+    return D, strength, np.stack([g11, g12, g22], axis=1)
+
+
+def asymptotic_field(surface: Any, uv: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The line field of the asymptotic directions (``II(du) = 0``) at rows of
+    ``uv``: ``(D, strength, G)`` as for :func:`principal_field`, with
+    ``strength = -K / (H^2 + |K|)`` (positive where ``K < 0``; the two branches
+    merge where it reaches 0, on the parabolic lines).
+
+    >>> import numpy as np
+    >>> import lgraph as lg
+    >>> D, s, G = asymptotic_field(lg.Helicoid(), np.array([[0.5, 0.3]]))
+    >>> bool(s[0] > 0)
+    True
+    """
+    _x1, _x2, (g11, g12, g22), (L11, L12, L22) = _frame(surface, uv)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        g = g11 * g22 - g12 * g12
+        K = (L11 * L22 - L12 * L12) / g
+        H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
         strength = -K / (H * H + np.abs(K))
-    return du, strength
+    disc = np.sqrt(np.maximum(L12 * L12 - L11 * L22, 0.0))
+    D = np.empty((len(uv), 2, 2))
+    for b, sgn in enumerate((1.0, -1.0)):
+        # L11 a^2 + 2 L12 a b + L22 b^2 = 0: (a, b) = (-L12 +- disc, L11) or (L22, -L12 -+ disc)
+        va = np.stack([-L12 + sgn * disc, L11], axis=1)
+        vb = np.stack([L22, -L12 - sgn * disc], axis=1)
+        use_a = np.einsum("ij,ij->i", va, va) >= np.einsum("ij,ij->i", vb, vb)
+        D[:, b] = _unit(np.where(use_a[:, None], va, vb), g11, g12, g22)
+    return D, strength, np.stack([g11, g12, g22], axis=1)
 
 
-def _smoothstep(x: np.ndarray) -> np.ndarray:
-    x = np.clip(x, 0.0, 1.0)
-    return x * x * (3 - 2 * x)
-
-
-class _FieldLines:
-    """Lines of a direction field integrated together (one ``solve_ivp`` system).
-
-    Each line runs forward and backward from its seed up to ``length`` (3-D arc
-    length), stopping where the field's strength drops below ``stop`` or the
-    line leaves a non-periodic side of the domain, and closing when it returns
-    to its seed.
-    """
-
-    def __init__(
-        self,
-        surface: Any,
-        field: Any,
-        seeds: np.ndarray,
-        which: np.ndarray,
-        length: float,
-        stop: float,
-        rtol: float = 1e-10,
-        atol: float = 1e-12,
-    ) -> None:
-        from scipy.integrate import solve_ivp
-
-        self.surface = surface
-        d = surface.domain
-        self.domain = d
-        seeds = np.asarray(seeds, float).reshape(-1, 2)
-        m = len(seeds)
-        self.m = m
-        size = surface.size
-        du0, _ = field(surface, seeds, which)
-        # orientation: forward along the larger parameter component
-        flip = np.where(np.abs(du0[:, 0]) >= np.abs(du0[:, 1]), du0[:, 0], du0[:, 1]) < 0
-        du0[flip] *= -1
-        span = np.array([d.span(0), d.span(1)])
-        lo = np.array([d.u1[0], d.u2[0]])
-        hi = np.array([d.u1[1], d.u2[1]])
-        per = np.array(d.periodic)
-        self.sols = []
-        for sign in (1.0, -1.0):
-            ref = sign * du0.copy()
-
-            def rhs(_t: float, y: np.ndarray, ref: np.ndarray = ref) -> np.ndarray:
-                uv = y.reshape(m, 2)
-                du, strength = field(surface, uv, which)
-                dot = np.einsum("ij,ij->i", du, ref)
-                du = np.where((dot < 0)[:, None], -du, du)
-                # slow down smoothly (no step-size havoc) past the stopping
-                # places; the ends are cut exactly afterwards
-                speed = _smoothstep((strength - stop) / stop)
-                out = np.maximum(lo - uv, uv - hi) / span  # > 0 outside
-                out = np.where(per, -1.0, out).max(axis=1)
-                speed *= _smoothstep(1.0 - (out - 0.02) / 0.08)
-                ok = np.isfinite(du).all(axis=1) & np.isfinite(speed)
-                du = np.where(ok[:, None], du * np.where(ok, speed, 0.0)[:, None], 0.0)
-                ref[ok & (speed > 0)] = du[ok & (speed > 0)]
-                return du.ravel()
-
-            sol = solve_ivp(
-                rhs,
-                (0.0, length),
-                seeds.ravel(),
-                method="DOP853",
-                dense_output=True,
-                rtol=rtol,
-                atol=atol * max(d.span(0), d.span(1)),
-            )
-            self.sols.append(sol.sol)
-        # where each half ends: sample, then refine the first stop by bisection
-        self.ends = np.zeros((2, m))
-        self.closed = np.zeros(m, bool)
-        n = 4001
-        t = np.linspace(0.0, length, n)
-        start3 = surface.point(seeds[:, 0], seeds[:, 1])
-        for h in (0, 1):
-            Y = self.sols[h](t).reshape(m, 2, n).transpose(0, 2, 1)  # (m, n, 2)
-            bad = self._stopped(Y.reshape(-1, 2), field, which, stop).reshape(m, n)
-            # the first stop of every line, refined by bisection for all at once
-            stops = bad.any(axis=1)
-            first = np.argmax(bad, axis=1)
-            a = np.where(first > 0, t[np.maximum(first - 1, 0)], 0.0)
-            b = np.where(first > 0, t[first], 0.0)
-            rows = np.arange(m)
-            for _ in range(50):
-                c = 0.5 * (a + b)
-                yc = self.sols[h](c).reshape(m, 2, m)[rows, :, rows]  # line k at c[k]
-                hit = self._stopped(yc, field, which, stop)
-                b = np.where(hit, c, b)
-                a = np.where(hit, a, c)
-            self.ends[h] = np.where(stops, a, length)
-            if h == 0:
-                # closed loops: first return to the seed after leaving it
-                P = surface.point(Y[..., 0], Y[..., 1])
-                dist = np.linalg.norm(P - start3[:, None, :], axis=2)
-                for k in range(m):
-                    far = np.nonzero(dist[k] > 1e-2 * size)[0]
-                    if not len(far):
-                        continue
-                    j0 = far[0]
-                    near = np.nonzero(
-                        (dist[k, j0:] < 0.5 * length / n * 3) & (t[j0:] <= self.ends[0, k])
-                    )[0]
-                    if not len(near):
-                        continue
-                    j = j0 + near[0]
-                    tc = self._closest(k, start3[k], t[max(j - 2, 0)], t[min(j + 2, n - 1)])
-                    if np.linalg.norm(self._point(0, k, tc) - start3[k]) < 1e-6 * size:
-                        self.closed[k] = True
-                        self.ends[0, k] = tc
-
-        self.ends[1, self.closed] = 0.0  # a closed line is its forward loop
-
-    def _stopped(self, uv: np.ndarray, field: Any, which: np.ndarray, stop: float) -> np.ndarray:
-        d = self.domain
-        w = which if len(which) == len(uv) else np.repeat(which, len(uv) // len(which))
-        out = np.zeros(len(uv), bool)
-        for i in (0, 1):
-            if not d.periodic[i]:
-                lo, hi = d.range(i)
-                out |= (uv[:, i] < lo) | (uv[:, i] > hi)
-        _, strength = field(self.surface, uv, w)
-        return out | ~(strength > 2 * stop)
-
-    def _point(self, h: int, k: int, t: Any) -> np.ndarray:
-        uv = np.asarray(self.sols[h](t)).reshape(self.m, 2, -1)[k]
-        return self.surface.point(uv[0], uv[1])
-
-    def _closest(self, k: int, target: np.ndarray, a: float, b: float) -> float:
-        from scipy.optimize import minimize_scalar
-
-        res = minimize_scalar(
-            lambda t: float(np.sum((self._point(0, k, t).ravel() - target) ** 2)),
-            bounds=(a, b),
-            method="bounded",
-            options={"xatol": 1e-13 * max(b, 1.0)},
-        )
-        return float(res.x)
-
-    def uv(self, k: int, t: np.ndarray) -> np.ndarray:
-        """Parameters of line ``k`` at signed arc length ``t`` (< 0: backward)."""
-        t = np.asarray(t, float)
-        out = np.empty((len(t), 2))
-        for h, sel in ((0, t >= 0), (1, t < 0)):
-            if sel.any():
-                tt = np.abs(t[sel])
-                out[sel] = np.asarray(self.sols[h](tt)).reshape(self.m, 2, -1)[k].T
-        return out
-
-    def batch(self, family: str, keep: np.ndarray | None = None) -> Any:
-        from .curves import CurveBatch
-
-        ks = np.arange(self.m) if keep is None else np.asarray(keep)
-        ks = ks[(self.ends[0, ks] + self.ends[1, ks]) > 0]
-        return CurveBatch.from_curves(
-            self.surface,
-            family,
-            -self.ends[1, ks],
-            self.ends[0, ks],
-            lambda c, t: self.uv(int(ks[c]), t),
-            closed=self.closed[ks],
-        )
-
-    def samples(self, k: int, n: int = 200) -> np.ndarray:
-        t = np.linspace(-self.ends[1, k], self.ends[0, k], n)
-        uv = self.uv(k, t)
-        return self.surface.point(uv[:, 0], uv[:, 1])
-
-
-def _center_seed(surface: Any, field: Any, stop: float) -> np.ndarray:
-    """A seed near the middle of the domain where the field is well defined."""
-    d = surface.domain
-    f = np.array([0.5, 0.42, 0.58, 0.35, 0.65, 0.3, 0.7, 0.2, 0.8])
-    c1 = d.u1[0] + d.span(0) * f
-    c2 = d.u2[0] + d.span(1) * f[[0, 2, 1, 4, 3, 6, 5, 8, 7]]
-    U = np.stack(np.meshgrid(c1, c2, indexing="ij"), -1).reshape(-1, 2)
-    _, a = field(surface, U, np.zeros(len(U), int))
-    a = np.where(np.isfinite(a), a, -1.0)
-    good = np.nonzero(a > 20 * stop)[0]
-    k = good[0] if len(good) else int(np.argmax(a))
-    return U[k]
-
-
-def _spread(lines: _FieldLines, k: int, n: int) -> np.ndarray:
-    """``n`` parameters evenly spread in arc length along line ``k``."""
-    a, b = -lines.ends[1, k], lines.ends[0, k]
-    if lines.closed[k]:
-        t = a + (b - a) * np.arange(n) / n
-    else:
-        t = a + (b - a) * (np.arange(n) + 0.5) / n
-    return lines.uv(k, t)
-
-
-def _line_samples(lines: _FieldLines, step: float) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Every line sampled about ``step`` apart in arc length: ``(t, xyz)`` per
-    line, ``t`` increasing from the backward end to the forward end (all
-    lines evaluated together, once per half)."""
-    out = []
-    halves = []
-    for h in (0, 1):
-        tmax = float(lines.ends[h].max())
-        t = np.arange(0.0, tmax + step, step) if tmax > 0 else np.zeros(1)
-        uv = np.asarray(lines.sols[h](t)).reshape(lines.m, 2, -1).transpose(0, 2, 1)
-        halves.append((t, uv))
-    d = lines.domain
-    for k in range(lines.m):
-        (tf, uf), (tb, ub) = halves
-        f = tf <= lines.ends[0, k]
-        b = (tb <= lines.ends[1, k]) & (tb > 0)
-        t = np.concatenate([-tb[b][::-1], tf[f]])
-        uv = np.concatenate([ub[k][b][::-1], uf[k][f]])
-        uv = d.wrap(uv, clip=False)
-        out.append((t, lines.surface.point(uv[:, 0], uv[:, 1])))
-    return out
-
-
-def _keep_pieces(
-    lines: _FieldLines,
-    pieces: list,
-    points: list,
-    dsep: float,
-    min_length: float,
-    step: float,
-    placed: bool = False,
-) -> list[np.ndarray]:
-    """Trim each line of ``lines`` (in order) where it comes closer than
-    ``dsep / 2`` to lines already kept, keeping the run of samples through its
-    seed (evenly spaced streamlines, Jobard and Lefer 1997); drop runs shorter
-    than ``min_length``.  A closed line is kept whole.  Lines from ``placed``
-    seeds (spread along a transversal) are always kept, at least ``dsep / 2``
-    either side of the seed.  Appends ``(lines, k, ta, tb, closed)`` to ``pieces``
-    and the kept samples to ``points``; returns the samples of dropped lines."""
-    from scipy.spatial import cKDTree
-
-    dtest = 0.5 * dsep
-    dropped = []
-    for k, (t, x) in enumerate(_line_samples(lines, step)):
-        if len(t) < 2:
-            dropped.append(x)
-            continue
-        if points:
-            dist, _ = cKDTree(np.concatenate(points)).query(x)
-            free = dist > dtest
-        else:
-            free = np.ones(len(t), bool)
-        i = int(np.argmin(np.abs(t)))  # the seed
-        if placed:
-            free[np.abs(t) <= dtest] = True
-        if not free[i]:
-            dropped.append(x)
-            continue
-        if lines.closed[k]:
-            pieces.append((lines, k, 0.0, float(lines.ends[0, k]), True))
-            points.append(x)
-            continue
-        i0 = i1 = i
-        while i0 > 0 and free[i0 - 1]:
-            i0 -= 1
-        while i1 < len(t) - 1 and free[i1 + 1]:
-            i1 += 1
-        ta = -float(lines.ends[1, k]) if i0 == 0 else float(t[i0])
-        tb = float(lines.ends[0, k]) if i1 == len(t) - 1 else float(t[i1])
-        if tb - ta < (0.0 if placed else min_length) or tb <= ta:
-            dropped.append(x)
-            continue
-        pieces.append((lines, k, ta, tb, False))
-        points.append(x[i0 : i1 + 1])
-    return dropped
-
-
-def _pieces_batch(surface: Any, family: str, pieces: list) -> Any:
-    """One batch of trimmed field lines ``(lines, k, ta, tb, closed)``."""
-    from .curves import CurveBatch
-
-    return CurveBatch.from_curves(
-        surface,
-        family,
-        [p[2] for p in pieces],
-        [p[3] for p in pieces],
-        lambda c, t: pieces[c][0].uv(pieces[c][1], t),
-        closed=[p[4] for p in pieces],
-    )
-
-
-def field_line_batches(
-    surface: Any,
-    field: Any,
-    n1: int,
-    n2: int,
-    stop: float,
-    family: str = "curvature",
-    fill: bool = True,
+def numeric_lines_of_curvature(
+    surface: Any, n1: int, n2: int, spacing: str = "complete"
 ) -> list:
-    """Batches of about ``n1`` lines of the field's direction ``which = a`` and
-    ``n2`` of ``which = 1 - a``, where ``a`` is chosen so that the first family
-    runs roughly like the ``u1 = const`` lines at the centre of the domain.
-
-    Evenly spaced lines: the separation ``dsep`` of a family is the length of
-    the line of the other family through the centre divided by ``n``.  First
-    seeds lie ``dsep`` apart along that line; then, if ``fill``, more seeds go
-    where the surface is farther than ``0.9 dsep`` from every line of the
-    family (farthest first, in rounds).  Each line is cut where it comes
-    closer than ``dsep / 2`` (in space) to a line already drawn, keeping the
-    part through its seed, and pieces shorter than ``dsep`` are dropped: lines
-    neither bunch up (at umbilics, say) nor leave gaps, and no stray bits remain.
-    """
-    from scipy.spatial import cKDTree
-
-    size = surface.size
-    length = 3.0 * size
-    c = _center_seed(surface, field, stop)
-    both = _FieldLines(surface, field, np.array([c, c]), np.array([0, 1]), length, stop)
-    du0, _ = field(surface, np.array([c, c]), np.array([0, 1]))
-    x1, x2 = surface.derivatives(c[0], c[1])
-    e = du0[:, :1] * x1 + du0[:, 1:] * x2
-    a = 0 if abs(e[0] @ x2) / np.linalg.norm(x2) >= abs(e[1] @ x2) / np.linalg.norm(x2) else 1
-    out = []
-    d = surface.domain
-    ng = 40
-    g1 = (
-        np.linspace(*d.u1, ng + 2)[1:-1]
-        if not d.periodic[0]
-        else d.u1[0] + d.span(0) * np.arange(ng) / ng
-    )
-    g2 = (
-        np.linspace(*d.u2, ng + 2)[1:-1]
-        if not d.periodic[1]
-        else d.u2[0] + d.span(1) * np.arange(ng) / ng
-    )
-    G = np.stack(np.meshgrid(g1, g2, indexing="ij"), -1).reshape(-1, 2)
-    GP = surface.point(G[:, 0], G[:, 1])
-    for which, n in ((a, n1), (1 - a, n2)):
-        if n <= 0:
-            continue
-        transversal = 1 - which  # the line of the other family through the centre
-        L = both.ends[0, transversal] + both.ends[1, transversal]
-        dsep = (L if L > 0.05 * size else size) / n
-        step = dsep / 8
-        seeds = _spread(both, transversal, n) if L > 0 else np.array([c])
-        lines = _FieldLines(surface, field, seeds, np.full(len(seeds), which), length, stop)
-        pieces: list = []
-        points: list = []
-        _keep_pieces(lines, pieces, points, dsep, 1.5 * dsep, step, placed=True)
-        if fill and points:
-            _, str_ = field(surface, G, np.full(len(G), which))
-            # away from umbilics, where lines stop short anyway
-            alive = np.isfinite(str_) & (str_ > max(50 * stop, 0.1))
-            for _round in range(2):
-                dist, _ = cKDTree(np.concatenate(points)).query(GP)
-                dist = np.where(alive, dist, 0.0)
-                chosen: list[int] = []
-                for k in np.argsort(-dist):
-                    if dist[k] <= 0.9 * dsep or len(chosen) >= n + 4:
-                        break
-                    if all(np.linalg.norm(GP[k] - GP[j]) > 2 * dsep for j in chosen):
-                        chosen.append(int(k))
-                if not chosen:
-                    break
-                alive[chosen] = False
-                more = _FieldLines(surface, field, G[chosen], np.full(len(chosen), which),
-                                   length, stop)  # fmt: skip
-                dropped = _keep_pieces(more, pieces, points, dsep, dsep, step)
-                if dropped:  # seeds on a dropped line would give it again
-                    near, _ = cKDTree(np.concatenate(dropped)).query(GP)
-                    alive &= near > 0.5 * dsep
-        if pieces:
-            out.append(_pieces_batch(surface, family, pieces))
-    return out
-
-
-def numeric_lines_of_curvature(surface: Any, n1: int, n2: int) -> list:
-    """Lines of curvature of any surface, by integrating the principal direction
-    field (``solve_ivp``, DOP853, dense output).
+    """Lines of curvature of any surface, integrated from the principal
+    direction field (:mod:`lgraph.fieldlines`).
 
     ``n1`` lines of the family that runs like the ``u1 = const`` lines at the
-    centre of the domain, ``n2`` of the other; lines stop at umbilics and at
-    the domain boundary, and close when they return to their seed.
+    centre of the domain, ``n2`` of the other.  By default every line is
+    complete: it runs until the patch boundary, a pole, an umbilic, or until it
+    closes.  ``spacing="even"`` trims lines where they come close to another
+    (evenly spaced streamlines).  Where the parameter lines are lines of
+    curvature (``g12 = L12 = 0``, the paper's Proposition 4.1) they are drawn.
 
     >>> import lgraph as lg
     >>> b = numeric_lines_of_curvature(lg.Torus(3, 1), 2, 0)
     >>> bool(b[0].closed.all())
     True
     """
-    return field_line_batches(surface, principal_field, n1, n2, UMBILIC_RTOL)
+    from .fieldlines import field_line_batches
+
+    return field_line_batches(
+        surface, principal_field, n1, n2, family="curvature", spacing=spacing
+    )

@@ -10,14 +10,17 @@ the contour) into :class:`~lgraph.curves.CurveBatch` objects.
 
 from __future__ import annotations
 
+import functools
 from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
 
 from ._own import CONTOUR
-from ._validate import count, finite_positive
+from ._validate import count, finite_positive, one_of
 from .curves import CurveBatch
+
+SPACINGS = ("complete", "even")
 
 if TYPE_CHECKING:
     from .projectors import Projector
@@ -116,11 +119,24 @@ class LinesOfCurvature(Family):
     """``n1`` and ``n2`` lines of curvature of the two principal families.
 
     Each surface class supplies its closed forms through
-    ``surface.lines_of_curvature(n1, n2)``.
+    ``surface.lines_of_curvature(n1, n2)``; other surfaces integrate the
+    principal directions (:mod:`lgraph.fieldlines`).  Numeric lines are
+    complete (``spacing="complete"``, the default: each runs to the patch
+    boundary, a pole or an umbilic, or closes) or trimmed where they come
+    close to another line of their family (``spacing="even"``, evenly spaced
+    streamlines).  Closed forms ignore ``spacing``.
+
+    >>> LinesOfCurvature(3, 3, spacing="dense")
+    Traceback (most recent call last):
+    ...
+    ValueError: LinesOfCurvature: spacing must be one of 'complete', 'even', got 'dense'
     """
 
     n1: int = attrs.field(default=10, validator=count("LinesOfCurvature"))
     n2: int = attrs.field(default=10, validator=count("LinesOfCurvature"))
+    spacing: str = attrs.field(
+        default="complete", kw_only=True, validator=one_of("LinesOfCurvature", SPACINGS)
+    )
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
         method = getattr(surface, "lines_of_curvature", None)
@@ -128,6 +144,8 @@ class LinesOfCurvature(Family):
             raise NotImplementedError(
                 f"LinesOfCurvature: {type(surface).__name__} has no lines_of_curvature(n1, n2)"
             )
+        if self.spacing != "complete" and getattr(method, "numeric", False):
+            method = functools.partial(method, spacing=self.spacing)
         return [
             attrs.evolve(b, family="curvature", curve_family=None) for b in method(self.n1, self.n2)
         ]

@@ -25,10 +25,10 @@ from scipy.interpolate import make_interp_spline
 from scipy.spatial import cKDTree
 
 from ._own import CONTOUR, OFF
-from ._validate import as_number, count, finite_positive, vector3
-from .curvature import asymptotic_field, field_line_batches
+from ._validate import as_number, count, finite_positive, one_of, vector3
+from .curvature import asymptotic_field
 from .curves import CurveBatch, CurveOnSurface
-from .families import Family, register_family
+from .families import SPACINGS, Family, register_family
 from .surfaces._base import Domain, Surface
 
 if TYPE_CHECKING:
@@ -55,7 +55,8 @@ class AsymptoticLines(Family):
 
     Surfaces with closed forms supply ``asymptotic_lines(n1, n2)`` (the rulings
     of the hyperboloid of one sheet and the hyperbolic paraboloid); others are
-    integrated numerically.
+    integrated numerically (:mod:`lgraph.fieldlines`): complete lines by
+    default, or trimmed to even spacing with ``spacing="even"``.
 
     >>> AsymptoticLines(-1, 3)
     Traceback (most recent call last):
@@ -65,6 +66,9 @@ class AsymptoticLines(Family):
 
     n1: int = attrs.field(default=8, validator=count("AsymptoticLines"))
     n2: int = attrs.field(default=8, validator=count("AsymptoticLines"))
+    spacing: str = attrs.field(
+        default="complete", kw_only=True, validator=one_of("AsymptoticLines", SPACINGS)
+    )
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
         closed_form = getattr(surface, "asymptotic_lines", None)
@@ -73,8 +77,10 @@ class AsymptoticLines(Family):
                 attrs.evolve(b, family="asymptotic", curve_family=None)
                 for b in closed_form(self.n1, self.n2)
             ]
+        from .fieldlines import field_line_batches
+
         return field_line_batches(
-            surface, asymptotic_field, self.n1, self.n2, stop=0.01, family="asymptotic"
+            surface, asymptotic_field, self.n1, self.n2, family="asymptotic", spacing=self.spacing
         )
 
 

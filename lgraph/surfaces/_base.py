@@ -33,10 +33,25 @@ _W2 = (-1 / 12, 4 / 3, 4 / 3, -1 / 12)
 
 
 def _bool_pair(value: Any) -> tuple[bool, bool]:
-    if isinstance(value, bool):
-        return (value, value)
+    if isinstance(value, (bool, np.bool_)):
+        return (bool(value), bool(value))
     a, b = value
     return (bool(a), bool(b))
+
+
+def _pole_pairs(value: Any) -> tuple[tuple[bool, bool], tuple[bool, bool]]:
+    """Poles per parameter end: ``True`` (all four ends), ``(p1, p2)`` (both
+    ends of ``u1`` / ``u2``) or ``((lo1, hi1), (lo2, hi2))``, mixed freely."""
+    if isinstance(value, (bool, np.bool_)):
+        value = (value, value)
+    try:
+        a, b = value
+    except (TypeError, ValueError):
+        raise ValueError(
+            "poles must be a bool, a pair (u1, u2) of bools, or a pair of pairs "
+            f"((u1 low, u1 high), (u2 low, u2 high)), got {value!r}"
+        ) from None
+    return (_bool_pair(a), _bool_pair(b))
 
 
 @attrs.frozen
@@ -44,9 +59,14 @@ class Domain:
     """The drawn parameter rectangle ``u1_range x u2_range``.
 
     ``periodic[i]`` says that ``u_i`` wraps around (its two ends are the same
-    curve); ``poles[i]`` says that the ends of ``u_i`` collapse to single points
-    (so no parameter line is drawn there).
+    curve); ``poles[i] = (low, high)`` says which ends of ``u_i`` collapse to
+    single points (no boundary line is drawn there).  ``poles`` may be given
+    as one bool, one bool per parameter, or a pair per parameter: a bowl
+    with its vertex at ``u1 = 0`` and its rim at ``u1 = 1`` has
+    ``poles=((True, False), False)``.
 
+    >>> Domain((0, 1), (0, 1), poles=((True, False), False)).ends(0).tolist()
+    [1.0]
     >>> d = Domain((0, 1), (0, 6.283185307179586), periodic=(False, True))
     >>> d.lines(0, 3).tolist()
     [0.25, 0.5, 0.75]
@@ -59,7 +79,9 @@ class Domain:
     u1: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u1", v))
     u2: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u2", v))
     periodic: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
-    poles: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
+    poles: tuple[tuple[bool, bool], tuple[bool, bool]] = attrs.field(
+        default=False, converter=_pole_pairs
+    )
 
     def range(self, i: int) -> tuple[float, float]:
         return self.u1 if i == 0 else self.u2
@@ -103,9 +125,9 @@ class Domain:
     def ends(self, i: int) -> np.ndarray:
         """The values of ``u_i`` at which the patch has a boundary curve (both
         ends, unless ``u_i`` is periodic; pole ends excluded)."""
-        if self.periodic[i] or self.poles[i]:
+        if self.periodic[i]:
             return np.empty(0)
-        return np.array(self.range(i), dtype=float)
+        return np.array([e for e, pole in zip(self.range(i), self.poles[i]) if not pole], float)
 
 
 class Surface:
@@ -272,16 +294,20 @@ class Surface:
 
         return contour(self, projector)
 
-    def lines_of_curvature(self, n1: int, n2: int) -> list[CurveBatch]:
+    def lines_of_curvature(
+        self, n1: int, n2: int, spacing: str = "complete"
+    ) -> list[CurveBatch]:
         """``n1`` and ``n2`` lines of the two principal families.
 
         Default: numeric integration of the principal direction field (see
-        :func:`lgraph.curvature.numeric_lines_of_curvature`); classes with
-        closed forms override it.
+        :func:`lgraph.curvature.numeric_lines_of_curvature`; ``spacing`` is
+        ``"complete"`` or ``"even"``); classes with closed forms override it.
         """
         from ..curvature import numeric_lines_of_curvature
 
-        return numeric_lines_of_curvature(self, n1, n2)
+        return numeric_lines_of_curvature(self, n1, n2, spacing=spacing)
+
+    lines_of_curvature.numeric = True  # type: ignore[attr-defined]
 
     # -- what it hides -------------------------------------------------------
     def hits(

@@ -122,8 +122,8 @@ def _grid_axis(surface: Surface, i: int, n: int) -> np.ndarray:
     lo, hi = d.range(i)
     if d.periodic[i]:
         return lo + (hi - lo) * np.arange(n) / n
-    inset = 1e-7 * (hi - lo) if d.poles[i] else 0.0
-    return np.linspace(lo + inset, hi - inset, n)
+    inset = 1e-7 * (hi - lo)
+    return np.linspace(lo + inset * d.poles[i][0], hi - inset * d.poles[i][1], n)
 
 
 def _edge_roots(fun: Any, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray) -> Any:

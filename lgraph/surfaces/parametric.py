@@ -28,7 +28,7 @@ import numpy as np
 from .._tolerance import SELF_HIT_RTOL
 from .._validate import as_number, finite_positive, interval
 from ..families import parameter_line_batches
-from ._base import CONTOUR, ON, Domain, Surface, _bool_pair
+from ._base import CONTOUR, ON, Domain, Surface, _bool_pair, _pole_pairs
 from ._polyroots import has_root_in
 
 __all__ = [
@@ -77,8 +77,11 @@ class ParametricSurface(Surface):
         The drawn parameter rectangle.
     periodic : bool or (bool, bool)
         Whether ``u1`` / ``u2`` wrap around (the two ends are the same curve).
-    poles : bool or (bool, bool)
-        Whether the ends of ``u1`` / ``u2`` collapse to single points.
+    poles : bool, (bool, bool) or ((bool, bool), (bool, bool))
+        Which ends of ``u1`` / ``u2`` collapse to single points: one flag for
+        all, one per parameter, or ``(low, high)`` per parameter (a bowl with
+        its vertex at ``u1 = 0`` and its rim at ``u1 = 1``:
+        ``poles=((True, False), False)``).
     derivatives_func : callable, optional
         ``derivatives_func(u1, u2) -> (x1, x2)``; otherwise finite differences.
 
@@ -109,7 +112,9 @@ class ParametricSurface(Surface):
         converter=lambda v: interval("ParametricSurface", "u2_range", v)
     )
     periodic: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
-    poles: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
+    poles: tuple[tuple[bool, bool], tuple[bool, bool]] = attrs.field(
+        default=False, converter=_pole_pairs
+    )
     derivatives_func: Callable[..., tuple[np.ndarray, np.ndarray]] | None = attrs.field(
         default=None, kw_only=True, validator=_callable("ParametricSurface")
     )
