@@ -271,3 +271,37 @@ def test_quartic_hits_match_brute_force(surf) -> None:  # noqa: ANN001
     w = np.broadcast_to(view.frame[2], x.shape)
     got = surf.hits(x, w, np.inf, np.full(len(x), CONTOUR, np.int8))
     assert np.array_equal(got, _sign_changes(surf, x, w, s))
+
+
+def test_monkey_saddle_hits_match_brute_force() -> None:
+    """The exact cubic ray test of the monkey saddle against sign changes of
+    z - c (x^3 - 3 x y^2) sampled along each ray over the square, for origins
+    off the surface, on it (ON) and rays tangent there (CONTOUR), and against
+    the generic numeric ray test."""
+    surf = lg.MonkeySaddle(extent=1.0, c=0.6)
+    rng = np.random.default_rng(7)
+    n, reach = 400, 6.0
+    s = np.linspace(0.0, reach, 30001)[1:]
+
+    def brute(o, v):
+        p = o[:, None, :] + s[None, :, None] * v[:, None, :]
+        f = p[..., 2] - 0.6 * (p[..., 0] ** 3 - 3 * p[..., 0] * p[..., 1] ** 2)
+        inside = (np.abs(p[..., 0]) <= 1) & (np.abs(p[..., 1]) <= 1)
+        change = (np.sign(f[:, 1:]) != np.sign(f[:, :-1])) & inside[:, 1:] & inside[:, :-1]
+        return change.any(axis=1)
+
+    v = rng.normal(size=(n, 3))
+    v /= np.linalg.norm(v, axis=1)[:, None]
+    off = rng.uniform(-1.3, 1.3, (n, 3))
+    got = surf.hits(off, v, reach)
+    assert np.array_equal(got, brute(off, v)) and 0.1 < got.mean() < 0.9
+    assert np.array_equal(got, hits(surf, off, v, np.full(n, reach), np.zeros(n, np.int8)))
+    uv = rng.uniform(-0.95, 0.95, (n, 2))
+    on = surf.point(uv[:, 0], uv[:, 1])
+    got = surf.hits(on, v, reach, np.full(n, ON, np.int8))
+    assert np.array_equal(got, brute(on + 1e-9 * v, v)) and got.any()
+    normal = surf.normal(uv[:, 0], uv[:, 1])
+    tangent = np.cross(normal, rng.normal(size=(n, 3)))
+    tangent /= np.linalg.norm(tangent, axis=1)[:, None]
+    got = surf.hits(on, tangent, reach, np.full(n, CONTOUR, np.int8))
+    assert np.array_equal(got, brute(on + 1e-6 * tangent, tangent)) and got.any()

@@ -12,24 +12,27 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["has_root_in"]
+__all__ = ["all_real_roots", "has_root_in", "real_roots"]
 
 
-def has_root_in(coef: np.ndarray, lower: Any, upper: Any, size: Any) -> np.ndarray:
-    """Whether each real polynomial (rows of ``coef``, highest power first,
-    leading coefficient non-zero) has a real root in ``(lower, upper)``.
+def real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
+    """Real roots ``(n, deg)`` of each real polynomial (rows of ``coef``,
+    highest power first, leading coefficient non-zero), NaN where a root is
+    complex.
 
     Roots are the eigenvalues of the companion matrices, all rows at once.  A
     root counts as real when its imaginary part is below ``1e-7`` of ``size +
     |root|`` (a double root splits into a pair ~1e-8 apart); only real roots
     are then polished by Newton steps (small ones: a complex pair's real part
-    must not wander off into a false root).  ``lower``, ``upper`` and ``size``
-    are scalars or one value per row.
+    must not wander off into a false root).  ``size`` is a scalar or one
+    value per row.
+
+    >>> real_roots(np.array([[1.0, -3.0, 2.0]]), 1.0).round(12).tolist()
+    [[2.0, 1.0]]
     """
     coef = np.asarray(coef, dtype=float)
     n, deg = len(coef), coef.shape[1] - 1
-    lower, upper, size = (np.broadcast_to(np.asarray(x, float), (n,))[:, None]
-                          for x in (lower, upper, size))  # fmt: skip
+    size = np.broadcast_to(np.asarray(size, float), (n,))[:, None]
     monic = coef[:, 1:] / coef[:, :1]
     comp = np.zeros((n, deg, deg))
     comp[:, 0, :] = -monic
@@ -46,4 +49,36 @@ def has_root_in(coef: np.ndarray, lower: Any, upper: Any, size: Any) -> np.ndarr
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             step = np.where(real & (df != 0), f / df, 0.0)
         s = s - np.where(np.abs(step) < 1e-3 * (size + np.abs(s)), step, 0.0)
-    return (real & (s > lower) & (s < upper)).any(axis=1)
+    return np.where(real, s, np.nan)
+
+
+def all_real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
+    """:func:`real_roots` of polynomials whose leading coefficients may vanish:
+    leading coefficients below ``1e-13`` of the row's largest are dropped
+    (rows of each degree solved together); ``(n, deg)``, NaN-padded.
+
+    >>> all_real_roots(np.array([[0.0, 1.0, -1.0], [1.0, 0.0, -4.0]]), 1.0).round(12).tolist()
+    [[1.0, nan], [2.0, -2.0]]
+    """
+    coef = np.asarray(coef, dtype=float)
+    n, deg = len(coef), coef.shape[1] - 1
+    size = np.broadcast_to(np.asarray(size, float), (n,))
+    out = np.full((n, deg), np.nan)
+    big = np.abs(coef).max(axis=1, keepdims=True)
+    negligible = np.abs(coef) <= 1e-13 * big
+    lead = np.argmin(negligible, axis=1)  # index of the first coefficient that counts
+    for first in range(deg):
+        rows = np.flatnonzero(lead == first)
+        if len(rows):
+            out[rows, : deg - first] = real_roots(coef[rows, first:], size[rows])
+    return out
+
+
+def has_root_in(coef: np.ndarray, lower: Any, upper: Any, size: Any) -> np.ndarray:
+    """Whether each polynomial of :func:`real_roots` has a real root in
+    ``(lower, upper)`` (scalars or one value per row)."""
+    n = len(coef)
+    lower, upper = (np.broadcast_to(np.asarray(x, float), (n,))[:, None] for x in (lower, upper))
+    s = real_roots(coef, size)
+    with np.errstate(invalid="ignore"):
+        return ((s > lower) & (s < upper)).any(axis=1)
