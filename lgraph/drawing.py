@@ -349,6 +349,16 @@ class Drawing:
             ox, oy = lab.origin()
             yield lab.xy * scale + offset + (ox, oy), lab
 
+    def label_positions(self) -> np.ndarray:
+        """``(n, 2)``: where the anchor point of each label's box goes on the page
+        (pt, y up): the projected anchor plus the offset.  For backends that
+        typeset the text themselves (TikZ nodes)."""
+        scale, offset, _, _ = self._layout()
+        out = np.empty((len(self.labels), 2))
+        for i, lab in enumerate(self.labels):
+            out[i] = lab.xy * scale + offset + lab.offset
+        return out
+
     def label_boxes(self) -> np.ndarray:
         """``(n, 4)`` ink boxes ``x0, y0, x1, y1`` of :attr:`labels` on the page (pt, y up)."""
         scale, offset, _, _ = self._layout()

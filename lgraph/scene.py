@@ -184,8 +184,8 @@ class Scene:
             return item
         if not isinstance(item, (Surface, Curve, CurveOnSurface)):
             raise TypeError(
-                "Scene.add: item must be a Surface, a Curve, a Label, a Point or a Scene "
-                "(a group), got " + type(item).__name__
+                "Scene.add: item must be a Surface or a Curve (or a Label, a Point, or a "
+                "Scene added as a group), got " + type(item).__name__
             )
         for f in families:
             if not isinstance(f, Family):
