@@ -415,3 +415,24 @@ def test_pdf_stream_is_deflated_by_default(tmp_path):
     data = d.save(tmp_path / "a.pdf").read_bytes()
     stream = re.search(rb"stream\r?\n(.*?)endstream", data, re.S).group(1)
     assert b" c\n" in zlib.decompress(stream)
+
+
+def test_cli_width_option(tmp_path):
+    from lgraph.cli import main
+
+    scene = tmp_path / "s.toml"
+    scene.write_text(
+        '[projector]\nkind = "parallel"\nazimuth = 30\nelevation = 20\n'
+        '[[object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
+        '[[labels]]\ntext = "$N$"\nat = [0, 0, 1.3]\n'
+        "[[group]]\ntransform = [{ translate = [0, 3, 0] }]\n"
+        '[[group.object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
+        "[[group.points]]\nat = [0, 0, 1.2]\n"
+    )
+    out = tmp_path / "s.pdf"
+    assert main(["render", str(scene), "-o", str(out), "--width", "85mm"]) == 0
+    box, _ = _pdf_page(out)
+    assert box[2] - box[0] == pytest.approx(85 / 25.4 * 72, abs=1e-3)
+    loaded, projector, _ = lg.load_scene_file(scene)
+    assert len(loaded) == 2 and len(loaded.labels) == 1 and len(loaded.points) == 1
+    np.testing.assert_allclose(loaded.points[0].at, [0, 3, 1.2])
