@@ -214,19 +214,24 @@ class Scene:
     ) -> Iterator[Any]:
         """Nodes, labels and points with composed transforms and inherited styles."""
         mark_style = _group_style(style)
+        outer = not transform.is_identity
+
+        def compose(t: Transform) -> Transform:
+            return transform @ t if outer else t
+
         for e in self._entries:
             if isinstance(e, Group):
                 inner = e.style if e.style is not None else style
-                yield from e.scene._flatten(transform @ e.transform, inner)
+                yield from e.scene._flatten(compose(e.transform), inner)
             elif isinstance(e, _Mark):
-                t = transform @ e.transform
+                t = compose(e.transform)
                 if hasattr(e.item, "text"):
                     yield e.item.moved(t, None if mark_style is None else mark_style.color)
                 else:
                     yield e.item.moved(t, mark_style)
             else:
                 changes: dict[str, Any] = {}
-                if not transform.is_identity:
+                if outer:
                     changes["transform"] = transform @ e.transform
                 if style is not None and id(e) in self._unstyled:
                     changes["style"] = style
@@ -234,7 +239,7 @@ class Scene:
                 label = getattr(e.item, "label", None)  # e.g. an Arrow's tip label
                 if label is not None and hasattr(label, "text"):
                     yield label.moved(
-                        transform @ e.transform, None if mark_style is None else mark_style.color
+                        compose(e.transform), None if mark_style is None else mark_style.color
                     )
 
     @property
