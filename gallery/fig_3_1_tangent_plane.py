@@ -12,7 +12,8 @@ CAPTION = (
     "(u1, u2) = (-0.3, 1.15): the tangent vectors x1 = dx/du1 and x2 = dx/du2 (both scaled by "
     "0.5), a piece of the tangent plane they span and the surface normal "
     "N = x1 x x2 / |x1 x x2|, all drawn as solid objects that hide and are hidden. "
-    "Thick: the parameter lines through P, to which x1 and x2 are tangent."
+    "Thick: the parameter lines through P, to which x1 and x2 are tangent. The labels "
+    "are hidden exactly like the lines (each anchor's ray is cast against the scene)."
 )
 
 SURFACE = lg.Torus(3, 1.5)
@@ -42,11 +43,16 @@ def build() -> tuple[lg.Scene, lg.Projector]:
     # the tangent plane patch, and the tangent vectors on it, lifted by the
     # shaft radius so that the plane does not cut them in half
     scene.add(lg.Parallelogram.centered(P, 0.55 * x1, 0.9 * x2), lg.Contour(), contour=False)
-    for v in (x1, x2):
+    x1_name = lg.Label("$\\mathbf{x}_1$", at=P + SCALE * x1, anchor="n", offset=(0, -3))
+    for v, name in ((x1, x1_name), (x2, "$\\mathbf{x}_2$")):
         probe = lg.Arrow(P, P + SCALE * v, **_HEAD)
         lift = 1.5 * probe.shaft_radius * N
-        scene.add(lg.Arrow(P + lift, P + SCALE * v + lift, **_HEAD), lg.Contour(), contour=False)
-    scene.add(lg.Arrow(P, P + 1.6 * N, **_HEAD), lg.Contour(), contour=False)
+        arrow = lg.Arrow(P + lift, P + SCALE * v + lift, **_HEAD, label=name)
+        scene.add(arrow, lg.Contour(), contour=False)
+    scene.add(lg.Arrow(P, P + 1.6 * N, **_HEAD, label="$N$"), lg.Contour(), contour=False)
+    # P lies inside the tail of the normal's shaft, which would hide it: always drawn
+    scene.add(lg.Point(P, size=3.0, always=True))
+    scene.add(lg.Label("$P$", at=P, anchor="n", offset=(0, -3), always=True))
     return scene, lg.ParallelProjector.from_angles(-75, 28)
 
 

@@ -63,6 +63,14 @@ def _segment(p: np.ndarray, q: np.ndarray) -> lg.Curve:
     return lg.Curve(lambda s: p + s[:, None] * (q - p), 0.0, 1.0)
 
 
+def _mark(scene: lg.Scene, P: np.ndarray, anchor: str = "n") -> None:
+    """The point P: a dot and its name (P lies inside the arrows' tails, which
+    would hide it: drawn always)."""
+    scene.add(lg.Point(P, size=3.0, always=True))
+    offset = {"n": (0, -3), "e": (-4, 0)}[anchor]
+    scene.add(lg.Label("$P$", at=P, anchor=anchor, offset=offset, always=True))
+
+
 def _left() -> tuple[lg.Scene, lg.Projector]:
     d = decomposition(T0)
     P = d["P"]
@@ -75,9 +83,16 @@ def _left() -> tuple[lg.Scene, lg.Projector]:
         "n": P + VSCALE * d["kn"] * d["N"],
         "g": P + VSCALE * d["kg"] * d["G"],
     }
-    for tip in ends.values():
-        scene.add(lg.Arrow(P, tip, **_HEAD), lg.Contour(), contour=False)
-    scene.add(lg.Arrow(P, P + 0.7 * d["T"], **_HEAD), lg.Contour(), contour=False)
+    names = {
+        "k": "$\\mathbf{x}''$",
+        "n": "$\\kappa_n N$",
+        "g": "$\\kappa_g\\,(N \\times \\mathbf{x}')$",
+    }
+    for key, tip in ends.items():
+        scene.add(lg.Arrow(P, tip, **_HEAD, label=names[key]), lg.Contour(), contour=False)
+    tangent = lg.Arrow(P, P + 0.7 * d["T"], **_HEAD, label="$\\mathbf{x}'$")
+    scene.add(tangent, lg.Contour(), contour=False)
+    _mark(scene, P, "e")
     thin = lg.Style(width=0.3)
     scene.add(_segment(ends["n"], ends["k"]), style=thin)
     scene.add(_segment(ends["g"], ends["k"]), style=thin)
@@ -103,8 +118,9 @@ def _right() -> tuple[lg.Scene, lg.Projector]:
     scene.add(ELLIPSOID, lg.LinesOfCurvature(8, 8))
     # (the signs of e1, e2 are free: let them point back over the body)
     e1, e2 = (-e if e @ P > 0 else e for e in (e1, e2))
-    for v in (1.2 * e1, 1.2 * e2, 1.4 * n):
-        scene.add(lg.Arrow(P, P + v, **_HEAD), lg.Contour(), contour=False)
+    for v, name in ((1.2 * e1, "$\\mathbf{e}_1$"), (1.2 * e2, "$\\mathbf{e}_2$"), (1.4 * n, "$N$")):
+        scene.add(lg.Arrow(P, P + v, **_HEAD, label=name), lg.Contour(), contour=False)
+    _mark(scene, P)
     # seen from the normal's azimuth, 45 degrees below it: N points straight up
     az, el = np.degrees(np.arctan2(n[1], n[0])), np.degrees(np.arcsin(n[2]))
     return scene, lg.ParallelProjector.from_angles(az, el - 45)

@@ -15,11 +15,12 @@ from __future__ import annotations
 
 from .curvature import principal_curvatures, principal_directions
 from .curves import Curve, CurveBatch, CurveOnSurface
-from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
+from .drawing import HIDDEN_STYLE, Drawing, Page, PlacedLabel, Stroke, Style
 from .families import Contour, Family, LinesOfCurvature, ParameterLines, Umbilics
 from .geometry.transforms import Transform, rotate, scale, translate
+from .objects import Label, Point
 from .projectors import CentralProjector, ParallelProjector, Projector
-from .scene import Node, Scene
+from .scene import Group, Node, Scene
 from .scenefile import SceneFileError, load_scene_file
 from .surface_curves import (
     Arrow,
@@ -122,3 +123,4 @@ __all__ += [
     "Parallelogram",
 ]
 __all__ += ["load_scene_file", "SceneFileError"]
+__all__ += ["Label", "Point", "PlacedLabel", "Group"]

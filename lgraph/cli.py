@@ -39,7 +39,11 @@ def _render(args: argparse.Namespace) -> int:
         return 2
     drawing = scene.render(projector, **options.get("render", {}))
     out = args.output or str(Path(args.scene).with_suffix(".pdf"))
-    path = drawing.save(out, **options.get("save", {}))
+    save = dict(options.get("save", {}))
+    for name in ("width", "height"):  # the command line wins over the scene file
+        if getattr(args, name, None) is not None:
+            save[name] = args.__dict__[name]
+    path = drawing.save(out, **save)
     print(f"wrote {Path(path).resolve()}")
     return 0
 
@@ -72,6 +76,8 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument(
         "-o", "--output", help="output file (.pdf, .png, .svg); default: scene name .pdf"
     )
+    r.add_argument("--width", help="figure width, e.g. 8.5cm, 85mm, 3.3in, 240pt")
+    r.add_argument("--height", help="figure height (with --width: fit inside, aspect kept)")
     r.set_defaults(func=_render)
     g = sub.add_parser("gallery", help="build every gallery figure (PDF + PNG) and index.html")
     g.add_argument("outdir", help="output folder (created if missing)")

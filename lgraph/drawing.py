@@ -27,7 +27,7 @@ import numpy as np
 
 from ._validate import finite_positive, nonnegative_finite
 
-__all__ = ["Style", "Stroke", "Page", "Drawing", "HIDDEN_STYLE"]
+__all__ = ["Style", "Stroke", "PlacedLabel", "Page", "Drawing", "HIDDEN_STYLE"]
 
 
 def _color(value: Any) -> tuple[float, float, float]:
@@ -150,6 +150,67 @@ class Stroke:
         return len(self.xy)
 
 
+@attrs.frozen(eq=False)
+class PlacedLabel:
+    """A label as placed by the renderer (``drawing.labels``).
+
+    Attributes
+    ----------
+    text : str
+        The text (``$...$`` is TeX mathematics).
+    xy : (2,) array
+        Projected coordinates of the anchor (the space of :attr:`Stroke.xy`).
+    xyz : (3,) array
+        World coordinates of the anchor.
+    visible : bool
+        False for a hidden label (present when rendering with ``hidden_lines=True``).
+    anchor : str
+        Which point of the text box sits at the anchor (``"sw"``, ...; never ``"auto"``).
+    offset : (dx, dy)
+        Shift of the text from the anchor in pt.
+    size : float
+        Font size in pt.
+    style : Style
+        Its colour (hidden labels get the hidden style's colour).
+    """
+
+    text: str
+    xy: np.ndarray = attrs.field(converter=lambda v: np.asarray(v, dtype=float))
+    xyz: np.ndarray = attrs.field(converter=lambda v: np.asarray(v, dtype=float))
+    visible: bool = True
+    anchor: str = "center"
+    offset: tuple[float, float] = (0.0, 0.0)
+    size: float = 10.0
+    style: Style = Style()
+
+    def box(self) -> tuple[float, float, float, float]:
+        """The text's ink box relative to the anchor's page position, in pt
+        (offset and anchor applied)."""
+        from ._text import text_shape
+
+        bx0, by0, bx1, by1 = text_shape(self.text, self.size).box
+        ox, oy = self.origin()
+        return (bx0 + ox, by0 + oy, bx1 + ox, by1 + oy)
+
+    def origin(self) -> tuple[float, float]:
+        """Where the text's baseline starts, relative to the anchor's page position (pt)."""
+        from ._text import text_shape
+        from .objects import ANCHORS
+
+        bx0, by0, bx1, by1 = text_shape(self.text, self.size).box
+        pad = LABEL_PAD * self.size
+        fx, fy = ANCHORS[self.anchor]
+        # the anchor point of the padded box goes to the offset anchor
+        ax = bx0 - pad + fx * (bx1 - bx0 + 2 * pad)
+        ay = by0 - pad + fy * (by1 - by0 + 2 * pad)
+        return (self.offset[0] - ax, self.offset[1] - ay)
+
+
+#: space between a label's ink box and its anchor point, in units of its size
+#: (TikZ's inner sep is about 0.33 em)
+LABEL_PAD = 0.25
+
+
 @attrs.frozen
 class Page:
     """Page geometry in points (1/72 inch).
@@ -164,14 +225,23 @@ class Page:
     height: float | None = attrs.field(default=None)
     margin: float = attrs.field(default=18.0, validator=nonnegative_finite("Page"))
     extent: float = attrs.field(default=500.0, validator=finite_positive("Page"))
+    #: crop to the figure, scaled so that the page is this wide (pt) ...
+    fit_width: float | None = attrs.field(default=None, kw_only=True)
+    #: ... and/or at most this high (pt); set by ``Drawing.save(width=, height=)``
+    fit_height: float | None = attrs.field(default=None, kw_only=True)
 
     @width.validator
     @height.validator
+    @fit_width.validator
+    @fit_height.validator
     def _check_size(self, attribute: attrs.Attribute, value: float | None) -> None:
         if value is not None:
             finite_positive("Page")(self, attribute, value)
 
     def __attrs_post_init__(self) -> None:
+        fit = self.fit_width is not None or self.fit_height is not None
+        if fit and self.width is not None:
+            raise ValueError("Page: fit_width/fit_height crop the page; give no width and height")
         if (self.width is None) != (self.height is None):
             raise ValueError("Page: give both width and height, or neither (crop to figure)")
         if self.width is not None and min(self.width, self.height) <= 2 * self.margin:
@@ -208,12 +278,15 @@ class Drawing:
     strokes: tuple[Stroke, ...] = attrs.field(converter=tuple)
     page: Page = attrs.field(default=None, converter=_page)
     background: tuple[float, float, float] | None = attrs.field(default=(1.0, 1.0, 1.0))
+    labels: tuple[PlacedLabel, ...] = attrs.field(default=(), converter=tuple, kw_only=True)
     _cache: dict = attrs.field(factory=dict, init=False, repr=False)
 
     # -- geometry ---------------------------------------------------------
     def bounds(self) -> tuple[float, float, float, float]:
-        """``(xmin, ymin, xmax, ymax)`` of all strokes in projection coordinates."""
+        """``(xmin, ymin, xmax, ymax)`` of all strokes and label anchors in
+        projection coordinates."""
         pts = [s.xy for s in self.strokes if len(s.xy)]
+        pts += [lab.xy.reshape(1, 2) for lab in self.labels]
         if not pts:
             return (0.0, 0.0, 1.0, 1.0)
         allp = np.concatenate(pts)
@@ -235,16 +308,29 @@ class Drawing:
     def _compute_layout(self) -> tuple[float, np.ndarray, float, float]:
         x0, y0, x1, y1 = self.bounds()
         w, h = max(x1 - x0, 1e-300), max(y1 - y0, 1e-300)
+        if max(w, h) <= 1e-12 * max(abs(x0), abs(y0), abs(x1), abs(y1), 1.0):
+            w = h = 1.0  # a single point (one label): the extent's units
         if w <= 1e-12 * max(h, 1.0):
             w = h
         if h <= 1e-12 * max(w, 1.0):
             h = w
-        m = self.page.margin
-        if self.page.width is None:
-            scale = self.page.extent / max(w, h)
+        page = self.page
+        m = page.margin
+        if self.labels:
+            return _layout_with_boxes(self, (x0, y0, x1, y1), w, h)
+        if page.width is None:
+            scale = page.extent / max(w, h)
+            fits = [(page.fit_width, w), (page.fit_height, h)]
+            fitted = [(size - 2 * m) / ext for size, ext in fits if size is not None]
+            if fitted:
+                scale = min(fitted)
+                if min(fitted) <= 0:
+                    raise ValueError(
+                        f"Drawing: the page size must exceed twice the margin ({2 * m} pt)"
+                    )
             pw, ph = w * scale + 2 * m, h * scale + 2 * m
         else:
-            pw, ph = self.page.width, self.page.height
+            pw, ph = page.width, page.height
             scale = min((pw - 2 * m) / w, (ph - 2 * m) / h)
         cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
         offset = np.array([pw / 2 - scale * cx, ph / 2 - scale * cy])
@@ -254,6 +340,32 @@ class Drawing:
         """Width and height of the page in points."""
         _, _, pw, ph = self._layout()
         return pw, ph
+
+    def page_labels(self) -> Iterator[tuple[np.ndarray, PlacedLabel]]:
+        """Yield ``(origin, label)``: where each label's text baseline starts on
+        the page (pt, y upwards); hidden labels first."""
+        scale, offset, _, _ = self._layout()
+        for lab in sorted(self.labels, key=lambda lab: lab.visible):
+            ox, oy = lab.origin()
+            yield lab.xy * scale + offset + (ox, oy), lab
+
+    def label_positions(self) -> np.ndarray:
+        """``(n, 2)``: where the anchor point of each label's box goes on the page
+        (pt, y up): the projected anchor plus the offset.  For backends that
+        typeset the text themselves (TikZ nodes)."""
+        scale, offset, _, _ = self._layout()
+        out = np.empty((len(self.labels), 2))
+        for i, lab in enumerate(self.labels):
+            out[i] = lab.xy * scale + offset + lab.offset
+        return out
+
+    def label_boxes(self) -> np.ndarray:
+        """``(n, 4)`` ink boxes ``x0, y0, x1, y1`` of :attr:`labels` on the page (pt, y up)."""
+        scale, offset, _, _ = self._layout()
+        out = np.empty((len(self.labels), 4))
+        for i, lab in enumerate(self.labels):
+            out[i] = np.array(lab.box()) + np.tile(lab.xy * scale + offset, 2)
+        return out
 
     def page_strokes(self) -> Iterator[tuple[np.ndarray, Stroke]]:
         """Yield ``(points, stroke)`` with points in page units (pt, y upwards).
@@ -280,6 +392,36 @@ class Drawing:
         )
         return attrs.evolve(self, strokes=keep)
 
+    def sized(self, width: Any = None, height: Any = None) -> Drawing:
+        """This drawing on a page cropped to the figure, scaled to a physical size.
+
+        ``width`` and ``height`` are lengths (``"8.5cm"``, ``"60mm"``,
+        ``"3in"``, ``"200pt"`` or a number of pt, see :func:`lgraph.units.length_pt`).
+        With one of them the page has exactly that width (height); with both the
+        figure keeps its aspect and fits inside ``width`` x ``height``.  Line
+        widths and label sizes stay in pt.
+
+        >>> import numpy as np
+        >>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)))
+        >>> [round(v, 3) for v in Drawing(strokes=(s,)).sized(width="8.5cm").page_size()]
+        [240.945, 138.472]
+        """
+        from .units import length_pt
+
+        if width is None and height is None:
+            return self
+        fw = None if width is None else length_pt(width, "Drawing.save: width")
+        fh = None if height is None else length_pt(height, "Drawing.save: height")
+        m = self.page.margin
+        for name, v in (("width", fw), ("height", fh)):
+            if v is not None and v <= 2 * m:
+                raise ValueError(
+                    f"Drawing.save: {name} must exceed twice the page margin ({2 * m:g} pt), "
+                    f"got {v:g} pt"
+                )
+        page = Page(margin=m, extent=self.page.extent, fit_width=fw, fit_height=fh)
+        return attrs.evolve(self, page=page)
+
     def __len__(self) -> int:
         return len(self.strokes)
 
@@ -289,8 +431,19 @@ class Drawing:
         return int(sum(len(s.xy) for s in self.strokes))
 
     # -- output -----------------------------------------------------------
-    def save(self, path: str | os.PathLike[str], **options: Any) -> Path:
+    def save(
+        self,
+        path: str | os.PathLike[str],
+        *,
+        width: str | float | None = None,
+        height: str | float | None = None,
+        **options: Any,
+    ) -> Path:
         """Write the drawing to ``path``; the format follows the suffix.
+
+        ``width`` / ``height`` (optional) give the figure a physical size
+        (``"8.5cm"``, ``"85mm"``, ``"3.3in"``, ``"240pt"``; see :meth:`sized`),
+        for every format; line widths and label sizes stay in pt.
 
         ``.pdf`` (reportlab, vector), ``.png`` (pillow, anti-aliased; options
         ``dpi`` or ``size``), ``.svg`` (plain XML polylines) and any suffix a
@@ -303,13 +456,14 @@ class Drawing:
 
         path = Path(path)
         writer = get_backend(path.suffix)
+        drawing = self.sized(width, height)
         parent = path.parent if str(path.parent) else Path(".")
         if not parent.is_dir():
             raise FileNotFoundError(f"Drawing.save: folder {str(parent)!r} does not exist")
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=parent)
         os.close(fd)
         try:
-            writer(self, Path(tmp), **options)
+            writer(drawing, Path(tmp), **options)
             os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files
             os.replace(tmp, path)
         except BaseException:
@@ -375,3 +529,68 @@ def dash_polyline(points: np.ndarray, pattern: Sequence[float]) -> list[np.ndarr
         out[first, axis] = interp[:, 0]
         out[first + counts - 1, axis] = interp[:, 1]
     return np.split(out, first[1:])
+
+
+def _fit_scale(a: np.ndarray, lo: np.ndarray, hi: np.ndarray, avail: float) -> float:
+    """Largest scale ``s`` with ``max(a s + hi) - min(a s + lo) <= avail``.
+
+    The left side is convex in ``s`` and at ``s = 0`` is the widest text box,
+    so the scales that fit form an interval starting at 0; bisect its end.
+    """
+    span = float(a.max() - a.min())
+    if span <= 0:
+        return math.inf
+    if float(hi.max() - lo.min()) >= avail:
+        raise ValueError(
+            f"Drawing: the labels need more than the {avail:g} pt available; "
+            "make the page larger or the labels smaller"
+        )
+    s_lo, s_hi = 0.0, avail / span
+    while (a * s_hi + hi).max() - (a * s_hi + lo).min() <= avail:
+        s_lo, s_hi = s_hi, 2 * s_hi
+    for _ in range(80):
+        mid = 0.5 * (s_lo + s_hi)
+        if (a * mid + hi).max() - (a * mid + lo).min() <= avail:
+            s_lo = mid
+        else:
+            s_hi = mid
+    return s_lo
+
+
+def _layout_with_boxes(
+    drawing: Drawing, bounds: tuple[float, float, float, float], w: float, h: float
+) -> tuple[float, np.ndarray, float, float]:
+    """The layout when labels are present: their text boxes (in pt, not scaled)
+    must fit on the page as well as the strokes."""
+    x0, y0, x1, y1 = bounds
+    labels = drawing.labels
+    a = np.array([[x0, y0], [x1, y1]] + [lab.xy.tolist() for lab in labels])
+    boxes = np.array([lab.box() for lab in labels]).reshape(-1, 4)
+    lo = np.vstack([np.zeros((2, 2)), boxes[:, :2]])
+    hi = np.vstack([np.zeros((2, 2)), boxes[:, 2:]])
+    page = drawing.page
+    m = page.margin
+    if page.width is None:
+        fits = [
+            _fit_scale(a[:, k], lo[:, k], hi[:, k], size - 2 * m) if size is not None else math.inf
+            for k, size in enumerate((page.fit_width, page.fit_height))
+        ]
+        scale = min(fits) if any(f < math.inf for f in fits) else page.extent / max(w, h)
+        if not math.isfinite(scale):
+            scale = page.extent / max(w, h)
+        low = (a * scale + lo).min(axis=0)
+        high = (a * scale + hi).max(axis=0)
+        pw, ph = (high - low + 2 * m).tolist()
+        if page.fit_width is not None and scale == fits[0] < math.inf:
+            pw = page.fit_width  # exact (the bisection is within rounding)
+        offset = m - low
+    else:
+        pw, ph = page.width, page.height
+        scale = min(_fit_scale(a[:, k], lo[:, k], hi[:, k], size - 2 * m) for k, size in
+                    enumerate((pw, ph)))  # fmt: skip
+        if not math.isfinite(scale):
+            scale = min((pw - 2 * m) / w, (ph - 2 * m) / h)
+        low = (a * scale + lo).min(axis=0)
+        high = (a * scale + hi).max(axis=0)
+        offset = np.array([pw, ph]) / 2 - (low + high) / 2
+    return float(scale), offset, float(pw), float(ph)

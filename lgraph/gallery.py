@@ -197,15 +197,17 @@ def render_figure(result: Any, tolerance: float | None = None) -> Any:
     boxes = [d.bounds() for d in drawings]
     height = max(max(b[3] - b[1], 1e-300) for b in boxes)
     strokes = []
+    labels = []
     x = 0.0
     for d, (x0, y0, x1, y1) in zip(drawings, boxes):
         h = max(y1 - y0, 1e-300)
         k = height / h
         shift = np.array([x - k * x0, -k * (y0 + y1) / 2])
         strokes.extend(attrs.evolve(s, xy=s.xy * k + shift) for s in d.strokes)
+        labels.extend(attrs.evolve(lab, xy=lab.xy * k + shift) for lab in d.labels)
         x += k * (x1 - x0) + PANEL_GAP * height
     page = Page(extent=PAGE_EXTENT * min(len(drawings), 3))
-    return Drawing(strokes=strokes, page=page, background=drawings[0].background)
+    return Drawing(strokes=strokes, page=page, background=drawings[0].background, labels=labels)
 
 
 def _save(drawing: Any, folder: Path, stem: str) -> list[Path]:

@@ -1,6 +1,12 @@
 """The scene graph: nodes hold a surface or a free curve, its line families,
 a transform and a style.  Rendering is a pure function of scene and projector.
 
+A scene can be added to another scene (a group): ``outer.add(inner,
+transform=T, style=S)``.  Groups nest to any depth; transforms compose
+(outer after inner) and a group's style applies to the members that set
+none.  Labels (:class:`~lgraph.objects.Label`) and point marks
+(:class:`~lgraph.objects.Point`) are added the same way.
+
 >>> import lgraph as lg
 >>> scene = lg.Scene()
 >>> node = scene.add(lg.Sphere(1), lg.ParameterLines(4, 8))
@@ -26,7 +32,7 @@ from .surfaces._base import Surface
 if TYPE_CHECKING:
     from .projectors import Projector
 
-__all__ = ["Scene", "Node"]
+__all__ = ["Scene", "Node", "Group"]
 
 #: families drawn as the outline (wider by default): the contour and the patch edges
 _OUTLINE = ("contour", "boundary")
@@ -91,11 +97,47 @@ class Node:
         return base.evolve(width=base.width * 1.6) if family in _OUTLINE else base
 
 
+@attrs.frozen(eq=False)
+class Group:
+    """A scene placed inside another scene, with a transform and a style."""
+
+    scene: Scene
+    transform: Transform = attrs.field(default=None, converter=_transform)
+    style: Style | dict[str, Style] | None = None
+
+
+@attrs.frozen(eq=False)
+class _Mark:
+    """A label or point added to a scene, with its transform."""
+
+    item: Any
+    transform: Transform = attrs.field(default=None, converter=_transform)
+
+
+def _group_style(style: Style | dict[str, Style] | None) -> Style | None:
+    """The single style a group passes to labels and points (its colour)."""
+    if style is None or isinstance(style, Style):
+        return style
+    return style.get("default")
+
+
 class Scene:
-    """A mutable collection of nodes; :meth:`render` turns it into a :class:`Drawing`."""
+    """A mutable collection of nodes; :meth:`render` turns it into a :class:`Drawing`.
+
+    >>> import lgraph as lg
+    >>> inner = lg.Scene()
+    >>> _ = inner.add(lg.Sphere(1), lg.ParameterLines(2, 4))
+    >>> _ = inner.add(lg.Label("$P$", at=(0, 0, 1)))
+    >>> outer = lg.Scene()
+    >>> _ = outer.add(inner, transform=lg.translate(3, 0, 0))
+    >>> _ = outer.add(inner, transform=lg.translate(-3, 0, 0))
+    >>> len(outer), [lab.at.tolist() for lab in outer.labels]
+    (2, [[3.0, 0.0, 1.0], [-3.0, 0.0, 1.0]])
+    """
 
     def __init__(self) -> None:
-        self._nodes: list[Node] = []
+        self._entries: list[Node | Group | _Mark] = []
+        self._unstyled: set[int] = set()  # ids of nodes added without a style
 
     def add(
         self,
@@ -105,18 +147,45 @@ class Scene:
         style: Style | dict[str, Style] | None = None,
         contour: bool = True,
         hides: bool = True,
-    ) -> Node:
-        """Add a surface or curve with the given line families.
+    ) -> Any:
+        """Add a surface or curve with the given line families, a label, a
+        point mark, or another scene (a group).
 
         A surface added with no family gets its class's ``default_families``
         (:class:`ParameterLines` for most).  Every surface draws its contour
         and the edges of its drawn patch (family ``"boundary"``) unless
         ``contour=False``; ``hides=False`` makes a surface transparent (its
         lines are drawn, it hides nothing).
+
+        A :class:`Scene` is added as a group (returns a :class:`Group`): its
+        members are moved by ``transform`` after their own transforms, and
+        ``style`` applies to the members that set none.  A
+        :class:`~lgraph.Label` or :class:`~lgraph.Point` is returned as given.
         """
+        from .objects import Label, Point
+
+        if isinstance(item, Scene):
+            if families:
+                raise TypeError("Scene.add: a group (a Scene) takes no line families")
+            if item is self or self in item._descendants():
+                raise ValueError("Scene.add: a scene cannot contain itself (a cycle of groups)")
+            group = Group(item, transform, None if style is None else _style(style))
+            self._entries.append(group)
+            return group
+        if isinstance(item, (Label, Point)):
+            if families:
+                raise TypeError(f"Scene.add: a {type(item).__name__} takes no line families")
+            if style is not None:
+                raise TypeError(
+                    f"Scene.add: give a {type(item).__name__}'s look on the object itself "
+                    "(Label(color=...), Point(style=...)), not as style="
+                )
+            self._entries.append(_Mark(item, transform))
+            return item
         if not isinstance(item, (Surface, Curve, CurveOnSurface)):
             raise TypeError(
-                "Scene.add: item must be a Surface or a Curve, got " + type(item).__name__
+                "Scene.add: item must be a Surface or a Curve (or a Label, a Point, or a "
+                "Scene added as a group), got " + type(item).__name__
             )
         for f in families:
             if not isinstance(f, Family):
@@ -127,18 +196,76 @@ class Scene:
         if isinstance(item, Surface) and not families:
             families = tuple(FAMILIES[name]() for name in item.default_families)
         node = Node(item, tuple(families), transform, style, contour, hides)
-        self._nodes.append(node)
+        if style is None:
+            self._unstyled.add(id(node))
+        self._entries.append(node)
         return node
+
+    def _descendants(self) -> list[Scene]:
+        out: list[Scene] = []
+        for e in self._entries:
+            if isinstance(e, Group):
+                out.append(e.scene)
+                out.extend(e.scene._descendants())
+        return out
+
+    def _flatten(
+        self, transform: Transform, style: Style | dict[str, Style] | None
+    ) -> Iterator[Any]:
+        """Nodes, labels and points with composed transforms and inherited styles."""
+        mark_style = _group_style(style)
+        outer = not transform.is_identity
+
+        def compose(t: Transform) -> Transform:
+            return transform @ t if outer else t
+
+        for e in self._entries:
+            if isinstance(e, Group):
+                inner = e.style if e.style is not None else style
+                yield from e.scene._flatten(compose(e.transform), inner)
+            elif isinstance(e, _Mark):
+                t = compose(e.transform)
+                if hasattr(e.item, "text"):
+                    yield e.item.moved(t, None if mark_style is None else mark_style.color)
+                else:
+                    yield e.item.moved(t, mark_style)
+            else:
+                changes: dict[str, Any] = {}
+                if outer:
+                    changes["transform"] = transform @ e.transform
+                if style is not None and id(e) in self._unstyled:
+                    changes["style"] = style
+                yield attrs.evolve(e, **changes) if changes else e
+                label = getattr(e.item, "label", None)  # e.g. an Arrow's tip label
+                if label is not None and hasattr(label, "text"):
+                    yield label.moved(
+                        compose(e.transform), None if mark_style is None else mark_style.color
+                    )
 
     @property
     def nodes(self) -> tuple[Node, ...]:
-        return tuple(self._nodes)
+        """All nodes, groups flattened (transforms composed, styles inherited)."""
+        return tuple(x for x in self._flatten(IDENTITY, None) if isinstance(x, Node))
+
+    @property
+    def labels(self) -> tuple[Any, ...]:
+        """All labels (:class:`~lgraph.Label`), groups flattened, in world coordinates."""
+        from .objects import Label
+
+        return tuple(x for x in self._flatten(IDENTITY, None) if isinstance(x, Label))
+
+    @property
+    def points(self) -> tuple[Any, ...]:
+        """All point marks (:class:`~lgraph.Point`), groups flattened, in world coordinates."""
+        from .objects import Point
+
+        return tuple(x for x in self._flatten(IDENTITY, None) if isinstance(x, Point))
 
     def __iter__(self) -> Iterator[Node]:
-        return iter(self._nodes)
+        return iter(self.nodes)
 
     def __len__(self) -> int:
-        return len(self._nodes)
+        return len(self.nodes)
 
     def batches(self, node: Node, local_projector: Projector) -> list:
         """The curve batches a node draws (in its local coordinates)."""

@@ -29,6 +29,9 @@ The format::
     [save]                       # optional: keyword arguments of Drawing.save (e.g. dpi)
     dpi = 200
 
+    [save]                       # physical size of the figure (any format): pt, mm, cm, in
+    width = "8.5cm"              # and/or height = "6cm" (both: fit inside, aspect kept)
+
     [[object]]                   # one table per surface
     surface = "ellipsoid"
     params = { a = 3, b = 2, c = 1.3 }
@@ -38,6 +41,22 @@ The format::
     style = { color = "#000000", width = 0.5 }   # or per family: style.contour = {...}
     contour = true               # draw the contour (default true)
     hides = true                 # hide what lies behind (default true)
+
+    [[labels]]                   # text at a 3-D point, hidden like the lines
+    text = "$\\kappa_1$"          # $...$ is TeX mathematics
+    at = [3, 0, 0]
+    anchor = "sw"                # center, n, ne, e, se, s, sw, w, nw (TikZ's meaning)
+    offset = [2, 2]              # pt; also size (pt), color, always
+
+    [[points]]                   # a dot at a 3-D point: at, size (pt), color, always
+    at = [3, 0, 0]
+
+    [[group]]                    # a sub-scene: its members move with its transform,
+    transform = [{ translate = [0, 4, 0] }]   # and take its style unless they set one
+    style = { color = "#0033cc" }
+    [[group.object]]             # members: object, labels, points and group tables
+    surface = "sphere"           # (groups nest to any depth)
+    params = { r = 1 }
 
 TOML is read with :mod:`tomllib` (Python >= 3.11); on Python 3.10 the
 ``tomli`` package, if installed, is used instead.
@@ -377,7 +396,8 @@ def _call(key: Key, what: str, func: Callable[..., Any], kwargs: dict[str, Any])
 
 
 # -- the schema ------------------------------------------------------------------------
-_TOP = ("projector", "object", "page", "render", "save")
+_TOP = ("projector", "object", "labels", "points", "group", "page", "render", "save")
+_MEMBERS = ("object", "labels", "points", "group")
 
 
 def parse_scene(data: Mapping[str, Any]) -> tuple[Any, Any, dict[str, Any]]:
@@ -386,20 +406,12 @@ def parse_scene(data: Mapping[str, Any]) -> tuple[Any, Any, dict[str, Any]]:
     Raises ``_Invalid`` (with the offending key) on the first problem; nothing
     is rendered here.
     """
-    import lgraph as lg
 
     _only((), data, _TOP)
     projector = _projector(("projector",), _required((), data, "projector"))
-    objects = _required((), data, "object")
-    if not isinstance(objects, list) or not objects:
-        raise _Invalid(("object",), "expected one or more [[object]] tables")
-    scene = lg.Scene()
-    for k, obj in enumerate(objects):
-        item, families, kw = _object(("object", k), _table(("object", k), obj))
-        try:
-            scene.add(item, *families, **kw)
-        except (TypeError, ValueError) as exc:
-            raise _Invalid(("object", k), str(exc)) from None
+    if not any(k in data for k in _MEMBERS):
+        _required((), data, "object")
+    scene = _members((), data)
     render: dict[str, Any] = {}
     if "render" in data:
         render = _render(("render",), _table(("render",), data["render"]))
@@ -409,6 +421,95 @@ def parse_scene(data: Mapping[str, Any]) -> tuple[Any, Any, dict[str, Any]]:
     if "save" in data:
         save = _save(("save",), _table(("save",), data["save"]))
     return scene, projector, {"render": render, "save": save}
+
+
+def _array_of_tables(key: Key, v: Any, name: str) -> list[dict[str, Any]]:
+    if not isinstance(v, list) or not v:
+        raise _Invalid(key, f"expected one or more [[{name}]] tables")
+    return [_table(key + (k,), t) for k, t in enumerate(v)]
+
+
+def _members(key: Key, table: Mapping[str, Any]) -> Any:
+    """A scene of the ``object``, ``labels``, ``points`` and ``group`` tables in ``table``."""
+    import lgraph as lg
+
+    scene = lg.Scene()
+    objects = (
+        _array_of_tables(key + ("object",), table["object"], "object") if "object" in table else []
+    )
+    for k, obj in enumerate(objects):
+        item, families, kw = _object(key + ("object", k), obj)
+        try:
+            scene.add(item, *families, **kw)
+        except (TypeError, ValueError) as exc:
+            raise _Invalid(key + ("object", k), str(exc)) from None
+    for name, build in (("labels", _label), ("points", _point)):
+        if name in table:
+            for k, t in enumerate(_array_of_tables(key + (name,), table[name], name)):
+                scene.add(build(key + (name, k), t))
+    if "group" in table:
+        for k, g in enumerate(_array_of_tables(key + ("group",), table["group"], "group")):
+            gk = key + ("group", k)
+            _only(gk, g, ("transform", "style") + _MEMBERS)
+            if not any(m in g for m in _MEMBERS):
+                raise _Invalid(gk, "a group needs members: object, labels, points or group tables")
+            kw: dict[str, Any] = {}
+            if "transform" in g:
+                kw["transform"] = _transform(gk + ("transform",), g["transform"])
+            if "style" in g:
+                kw["style"] = _styles(gk + ("style",), g["style"])
+            scene.add(_members(gk, g), **kw)
+    return scene
+
+
+_LABEL = ("text", "at", "offset", "anchor", "size", "color", "always")
+
+
+def _label(key: Key, t: dict[str, Any]) -> Any:
+    from .objects import Label
+
+    _only(key, t, _LABEL)
+    text = _string(key + ("text",), _required(key, t, "text"))
+    kw: dict[str, Any] = {"at": _vector(key + ("at",), _required(key, t, "at"))}
+    if "offset" in t:
+        off = t["offset"]
+        if not (isinstance(off, list) and len(off) == 2):
+            raise _Invalid(key + ("offset",), f"expected [dx, dy] in pt, got {_show(off)}")
+        kw["offset"] = [_number(key + ("offset", k), x) for k, x in enumerate(off)]
+    if "anchor" in t:
+        kw["anchor"] = _string(key + ("anchor",), t["anchor"])
+    if "size" in t:
+        kw["size"] = _number(key + ("size",), t["size"], positive=True)
+    if "color" in t:
+        kw["color"] = _color_value(key + ("color",), t["color"])
+    if "always" in t:
+        kw["always"] = _boolean(key + ("always",), t["always"])
+    return _call(key, "label", lambda **kw: Label(text, **kw), kw)
+
+
+def _point(key: Key, t: dict[str, Any]) -> Any:
+    from .drawing import Style
+    from .objects import Point
+
+    _only(key, t, ("at", "size", "color", "always"))
+    kw: dict[str, Any] = {}
+    if "size" in t:
+        kw["size"] = _number(key + ("size",), t["size"], positive=True)
+    if "color" in t:
+        kw["style"] = _call(key + ("color",), "point", Style,
+                            {"color": _color_value(key + ("color",), t["color"])})  # fmt: skip
+    if "always" in t:
+        kw["always"] = _boolean(key + ("always",), t["always"])
+    at = _vector(key + ("at",), _required(key, t, "at"))
+    return _call(key, "point", lambda **kw: Point(at, **kw), kw)
+
+
+def _color_value(key: Key, v: Any) -> Any:
+    if isinstance(v, str):
+        return v
+    if isinstance(v, list) and len(v) == 3:
+        return [_number(key + (k,), x) for k, x in enumerate(v)]
+    raise _Invalid(key, f"expected a colour '#rrggbb', a name or [r, g, b], got {_show(v)}")
 
 
 def _projector(key: Key, p: Any) -> Any:
@@ -706,7 +807,20 @@ _SAVE: dict[str, Callable[[Key, Any], Any]] = {
     "precision": lambda k, v: _int(k, v, 0, 6),
     "compress": _boolean,
     "title": lambda k, v: _string(k, v),
+    "width": lambda k, v: _length(k, v),
+    "height": lambda k, v: _length(k, v),
 }
+
+
+def _length(key: Key, v: Any) -> float:
+    from .units import length_pt
+
+    if isinstance(v, bool) or not isinstance(v, (str, int, float)):
+        raise _Invalid(key, f"expected a length such as '8.5cm', got {_show(v)}")
+    try:
+        return length_pt(v, "length")
+    except ValueError as exc:
+        raise _Invalid(key, str(exc)) from None
 
 
 def _int(key: Key, v: Any, lo: int, hi: int) -> int:

@@ -533,6 +533,10 @@ class Arrow(Surface):
     contour=False)`` so that no parameter lines are drawn.  It hides what is
     behind it and is hidden like any surface.
 
+    ``label`` (optional) is text put just beyond the tip, on the side the
+    arrow points to in the picture (``"$N$"``), or a :class:`~lgraph.Label`
+    placed as given; it is added to the scene with the arrow.
+
     >>> a = Arrow((0, 0, 0), (0, 0, 2))
     >>> round(a.head_length, 3), round(a.head_radius, 3)
     (0.4, 0.12)
@@ -547,6 +551,7 @@ class Arrow(Surface):
     head_length: float = _pos("Arrow")
     head_radius: float = _pos("Arrow")
     shaft_radius: float = _pos("Arrow")
+    label: Any = attrs.field(default=None, kw_only=True)
     default_families = ()
 
     def __attrs_post_init__(self) -> None:
@@ -563,6 +568,17 @@ class Arrow(Surface):
         object.__setattr__(self, "head_length", hl)
         object.__setattr__(self, "head_radius", hr)
         object.__setattr__(self, "shaft_radius", sr)
+        if self.label is not None:
+            from .objects import Label
+
+            if isinstance(self.label, str):
+                d = self.tip - self.tail
+                lab = Label(self.label, at=self.tip, anchor="auto", direction=d)
+                object.__setattr__(self, "label", lab)
+            elif not isinstance(self.label, Label):
+                raise TypeError(
+                    f"Arrow: label must be text or an lg.Label, got {type(self.label).__name__}"
+                )
 
     # local frame: axis a, with e1, e2 orthonormal
     @property

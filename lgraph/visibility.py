@@ -183,7 +183,7 @@ def render(
             f"{tol.MAX_POINTS} sample points; draw fewer lines"
         )
     if not batches:
-        return Drawing(strokes=(), page=page)
+        return _with_marks(scene, [], nodes, projector, hidden_lines, hidden_style, page)
     s = Samples([(ni, b, nodes[ni].transform) for ni, b in batches], projector)
     if isinstance(projector, CentralProjector):
         behind = projector.depth(s.xyz) <= 0
@@ -211,4 +211,26 @@ def render(
     _classify(s, vis)
     locate_flips(s, vis, projector)
     strokes = _strokes(s, nodes, hidden_lines, hidden_style, 1e-12 * diag)
-    return Drawing(strokes=strokes, page=page)
+    return _with_marks(scene, strokes, nodes, projector, hidden_lines, hidden_style, page, vis)
+
+
+def _with_marks(
+    scene: Scene,
+    strokes: list[Stroke],
+    nodes: tuple[Node, ...],
+    projector: Projector,
+    hidden_lines: bool,
+    hidden_style: Style,
+    page: Page | tuple[float, float] | None,
+    vis: Occlusion | None = None,
+) -> Drawing:
+    """The drawing, with the scene's labels and point marks placed (:mod:`lgraph._marks`)."""
+    labels, points = scene.labels, scene.points
+    placed: list = []
+    if labels or points:
+        from ._marks import place_marks
+
+        vis = vis if vis is not None else Occlusion(nodes, projector)
+        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, hidden_style)
+        strokes = strokes + dots
+    return Drawing(strokes=strokes, page=page, labels=placed)

@@ -156,6 +156,7 @@ def write_pdf(
     # One template for the whole page, formatted with all coordinates in one
     # pass: per stroke "x y m", "x y l" for the rest, "S"; style operators
     # (which contain no '%') only where the style changes.
+    canvas.addLiteral("q")  # the strokes' scaling matrix ends before the labels
     runs = list(page_runs(drawing))
     values = np.concatenate([pts.ravel() for pts, _ in runs]) if runs else np.empty(0)
     unit = 10.0**precision
@@ -185,5 +186,10 @@ def write_pdf(
         template.append(move + line * (len(pts) - 1) + "S\n")
     if runs:
         canvas.addLiteral("".join(template) % tuple(values.tolist()))
+    canvas.addLiteral("Q")
+    if getattr(drawing, "labels", ()):
+        from ._labels import pdf_labels
+
+        pdf_labels(drawing, canvas)
     canvas.showPage()
     canvas.save()

@@ -201,6 +201,10 @@ def write_png(
         else:
             _draw_polyline(draw, px, ink, lw)
 
+    if getattr(drawing, "labels", ()):
+        from ._labels import png_labels
+
+        png_labels(img, drawing, mat, off, mode == "RGBA")
     if ss > 1:
         img = img.reduce(ss)
     eff_dpi = 72.0 * math.sqrt(sx * sy)

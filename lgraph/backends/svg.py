@@ -102,4 +102,8 @@ def write_svg(
                 f'stroke-linejoin="round"{dash} data-family={quoteattr(str(stroke.family))} '
                 f'data-visible="{"true" if stroke.visible else "false"}" points="{coords}"/>\n'
             )
+        if getattr(drawing, "labels", ()):
+            from ._labels import svg_labels
+
+            f.writelines(svg_labels(drawing, ph, precision))
         f.write("</svg>\n")

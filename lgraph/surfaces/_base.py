@@ -227,12 +227,49 @@ class Surface:
         return np.asarray(self.point(u1 + d1, u2 + d2), dtype=float)
 
     def normal(self, u1: Any, u2: Any) -> np.ndarray:
-        """Unit normal ``N = x1 x x2 / |x1 x x2|``."""
+        """Unit normal ``N = x1 x x2 / |x1 x x2|`` (the paper's, §3).
+
+        Its orientation follows the parametrization: for :class:`Sphere` and
+        :class:`Ellipsoid` (latitude ``u1``, longitude ``u2``) it points
+        *inward*.  For closed surfaces :meth:`outward_normal` gives the
+        outward one.
+        """
         x1, x2 = self.derivatives(u1, u2)
         n = np.cross(x1, x2)
         norm = np.linalg.norm(n, axis=-1, keepdims=True)
         with np.errstate(invalid="ignore", divide="ignore"):
             return n / norm
+
+    def _solid(self) -> Any:
+        """For a closed surface bounding a solid: its implicit function
+        (negative inside); otherwise None."""
+        return None
+
+    def outward_normal(self, u1: Any, u2: Any) -> np.ndarray:
+        """Unit normal pointing out of the solid a closed surface bounds.
+
+        :meth:`normal` with its sign chosen so that the surface's implicit
+        function (negative inside) grows along it.  Raises ValueError for a
+        surface that bounds no solid (a patch, an open or unbounded surface).
+
+        >>> import lgraph as lg
+        >>> n = lg.Sphere(2).outward_normal(0.3, 1.0)
+        >>> p = lg.Sphere(2).point(0.3, 1.0)
+        >>> bool(np.allclose(n, p / 2))
+        True
+        """
+        f = self._solid()
+        if f is None:
+            raise ValueError(
+                f"{type(self).__name__}: outward_normal needs a closed surface that bounds a "
+                "solid (sphere, ellipsoid, torus, ...); use normal() and choose its sign"
+            )
+        n = self.normal(u1, u2)
+        x = self.point(u1, u2)
+        lo, hi = self.bounds()
+        h = 1e-6 * float(np.linalg.norm(np.asarray(hi) - np.asarray(lo)))
+        sign = np.where(f(x + h * n) >= f(x - h * n), 1.0, -1.0)
+        return n * sign[..., None]
 
     def first_fundamental_form(self, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
         """``g11, g12, g22`` (``g_ik = x_i . x_k``)."""

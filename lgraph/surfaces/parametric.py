@@ -233,6 +233,9 @@ class _QuarticSurface(Surface):
         """The implicit function: zero on the surface, negative inside."""
         return _quartic_implicit(points, *self._quartic)
 
+    def _solid(self) -> Any:
+        return self.implicit
+
     def hits(
         self,
         origins: np.ndarray,

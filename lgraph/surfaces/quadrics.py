@@ -93,6 +93,13 @@ class Quadric(Surface):
     def _patch_test(self, points: np.ndarray, _index: np.ndarray) -> np.ndarray:
         return self.in_patch(points)
 
+    def _solid(self) -> Any:
+        # an ellipsoid: the whole quadric, A positive definite (F < 0 inside when d < 0)
+        A, _, _ = self.coefficients
+        if self.closed and np.all(np.linalg.eigvalsh(A) > 0):
+            return self.implicit
+        return None
+
     def patch_margin(self, points: Any) -> np.ndarray:
         """Continuous function of space points, ``>= 0`` exactly on the drawn patch
         (``+inf`` for closed quadrics)."""

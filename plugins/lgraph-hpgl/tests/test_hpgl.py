@@ -106,3 +106,23 @@ def test_registered_as_the_hpgl_backend(tmp_path):
     d = Drawing(strokes=(stroke([[0, 0], [1, 1]]),))
     d.save(tmp_path / "x.hpgl")
     assert (tmp_path / "x.hpgl").read_text().startswith("IN;")
+
+
+def test_labels_plain_in_the_stroke_font_math_left_out_with_a_warning(tmp_path):
+    import warnings
+
+    from lgraph_hpgl import write_hpgl
+
+    import lgraph as lg
+
+    scene = lg.Scene()
+    scene.add(lg.Label("P", at=(0, 0, 0)))
+    scene.add(lg.Label("$\\kappa$", at=(1, 1, 0)))
+    d = scene.render(lg.ParallelProjector(direction=(0, 0, 1)))
+    path = tmp_path / "a.hpgl"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        write_hpgl(d, path)
+    assert any("TeX mathematics left out" in str(w.message) for w in caught)
+    text = path.read_text()
+    assert "LBP\x03" in text and "kappa" not in text

@@ -97,3 +97,24 @@ def test_registered_as_the_tex_backend(tmp_path):
     d = Drawing(strokes=(stroke([[0, 0], [1, 1]]),))
     d.save(tmp_path / "x.tex", standalone=True)
     assert "\\documentclass{standalone}" in (tmp_path / "x.tex").read_text()
+
+
+def test_label_nodes_carry_the_raw_tex_and_the_anchor(tmp_path):
+    from lgraph_tikz import write_tikz
+
+    import lgraph as lg
+
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(2, 4))
+    scene.add(lg.Label("$\\kappa_n N$", at=(0, 0, 1.4), anchor="ne", color="#cc0000"))
+    d = scene.render(lg.ParallelProjector(direction=(1, 0, 0.2)))
+    path = tmp_path / "a.tex"
+    write_tikz(d, path)
+    text = path.read_text()
+    (node,) = [ln for ln in text.splitlines() if ln.startswith("\\node")]
+    assert "anchor=north east" in node and node.endswith("{$\\kappa_n N$};")
+    assert "font" not in node
+    import re
+
+    at = [float(v) for v in re.search(r"at \(([-\d.]+),([-\d.]+)\)", node).groups()]
+    np.testing.assert_allclose(at, d.label_positions()[0], atol=1e-4)

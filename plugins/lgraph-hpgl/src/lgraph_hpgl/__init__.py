@@ -27,6 +27,7 @@ PU;SP0;
 from __future__ import annotations
 
 import os
+import warnings
 from typing import Any
 
 import numpy as np
@@ -45,6 +46,42 @@ def _finite_runs(points: np.ndarray) -> list[np.ndarray]:
     edges = np.diff(np.concatenate([[False], ok, [False]]).astype(np.int8))
     starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
     return [points[a:b] for a, b in zip(starts, stops) if b - a >= 2]
+
+
+#: a character's cap height, as a fraction of the font size, in the plotter's stroke font
+_CAP = 0.7
+_CM_PER_PT = 2.54 / 72.0
+
+
+def _labels(drawing: Any, colours: dict[tuple[float, ...], int], pens: int) -> list[str]:
+    r"""Plain labels in the plotter's stroke font (``LB``); labels with TeX
+    mathematics are skipped with a warning (a stroke font cannot set them).
+
+    >>> import lgraph as lg
+    >>> scene = lg.Scene()
+    >>> _ = scene.add(lg.Label("P", at=(0, 0, 0)))
+    >>> d = scene.render(lg.ParallelProjector(direction=(0, 0, 1)))
+    >>> _labels(d, {}, 8)[0].startswith("PU;SP1;SI")
+    True
+    """
+    out: list[str] = []
+    skipped = []
+    for origin, lab in drawing.page_labels() if getattr(drawing, "labels", ()) else ():
+        if "$" in lab.text:
+            skipped.append(lab.text)
+            continue
+        pen = colours.setdefault(tuple(lab.style.color), len(colours) % pens + 1)
+        h = _CAP * lab.size * _CM_PER_PT
+        x, y = np.rint(np.asarray(origin) * UNITS_PER_PT).astype(np.int64).tolist()
+        text = lab.text.replace("\x03", "").encode("ascii", "replace").decode("ascii")
+        out.append(f"PU;SP{pen};SI{0.6 * h:.3f},{h:.3f};PU{x},{y};LB{text}\x03\n")
+    if skipped:
+        warnings.warn(
+            f"write_hpgl: {len(skipped)} label(s) with TeX mathematics left out "
+            f"({', '.join(map(repr, skipped[:3]))}): the plotter's stroke font cannot set them",
+            stacklevel=3,
+        )
+    return out
 
 
 def write_hpgl(drawing: Any, path: str | os.PathLike[str], *, pens: int = 8) -> None:
@@ -85,7 +122,9 @@ def write_hpgl(drawing: Any, path: str | os.PathLike[str], *, pens: int = 8) -> 
                     q = np.vstack([q, q[-1:]])  # a dot: pen down where it is
                 body = ",".join(map(str, q[1:].ravel().tolist()))
                 out.append(f"PU{q[0, 0]},{q[0, 1]};PD{body};\n")
-    if current is None:
+    labels = _labels(drawing, colours, pens)
+    out.extend(labels)
+    if current is None and not labels:
         out.append("\n")
     out.append("PU;SP0;\n")
     text = "".join(out)

@@ -8,7 +8,9 @@ Registered through the entry point group ``lgraph.backends`` (see
 
 Coordinates are in pt (``x=1pt, y=1pt``), so the picture has the page size
 lgraph computed; every stroke becomes one ``\draw`` with its colour, width
-and dash pattern.
+and dash pattern.  Every label becomes a ``\node`` holding its raw text
+(``$...$`` is typeset by TeX) with no font set, so the document's fonts
+apply; its anchor is lgraph's anchor (``"sw"`` -> ``south west``).
 
 >>> import numpy as np, tempfile, os
 >>> from lgraph import Drawing, Page, Stroke
@@ -47,6 +49,40 @@ def _finite_runs(points: np.ndarray) -> list[np.ndarray]:
     edges = np.diff(np.concatenate([[False], ok, [False]]).astype(np.int8))
     starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
     return [points[a:b] for a, b in zip(starts, stops) if b - a >= 2]
+
+
+_ANCHORS = {
+    "center": "center",
+    "n": "north",
+    "ne": "north east",
+    "e": "east",
+    "se": "south east",
+    "s": "south",
+    "sw": "south west",
+    "w": "west",
+    "nw": "north west",
+}
+
+
+def _label_nodes(drawing: Any, colours: dict[tuple[float, ...], str]) -> list[str]:
+    r"""One ``\node`` per label of ``drawing`` (none for an older lgraph).
+
+    >>> import lgraph as lg
+    >>> scene = lg.Scene()
+    >>> _ = scene.add(lg.Label("$\\kappa_1$", at=(0, 0, 0), anchor="sw"))
+    >>> d = scene.render(lg.ParallelProjector(direction=(0, 0, 1)))
+    >>> _label_nodes(d, {})
+    ['\\node[anchor=south west, text=lgc0] at (18,18) {$\\kappa_1$};\n']
+    """
+    labels = getattr(drawing, "labels", ())
+    if not labels:
+        return []
+    out = []
+    for (x, y), lab in zip(drawing.label_positions().tolist(), labels):
+        name = colours.setdefault(tuple(float(c) for c in lab.style.color), f"lgc{len(colours)}")
+        opts = f"anchor={_ANCHORS[lab.anchor]}, text={name}"
+        out.append(f"\\node[{opts}] at ({_num(x)},{_num(y)}) {{{lab.text}}};\n")
+    return out
 
 
 def write_tikz(
@@ -93,6 +129,7 @@ def write_tikz(
         for run in _finite_runs(np.asarray(pts, float)):
             coords = " -- ".join([fmt] * len(run)) % tuple(run.ravel().tolist())
             body.append(f"\\draw[{', '.join(opts)}] {coords};\n")
+    body.extend(_label_nodes(drawing, colours))
     head = [f"% lgraph figure, {_num(w)} x {_num(h)} pt\n"]
     if standalone:
         head.append("\\documentclass{standalone}\n\\usepackage{tikz}\n\\begin{document}\n")

@@ -1,0 +1,104 @@
+"""Render stage for labels and point marks: project their anchors and hide them.
+
+An anchor is hidden when the ray from it toward the viewer meets a surface of
+the scene (the same exact test as for the samples of the lines,
+:class:`lgraph._occlusion.Occlusion`).  Visible ones are placed; hidden ones
+are left out, or kept and marked hidden with ``hidden_lines=True``; objects
+with ``always=True`` are placed as visible wherever they are.  A point mark
+becomes a stroke of family ``"point"``: two equal points drawn with round
+caps, a dot of diameter ``size`` in every backend.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ._own import OFF
+from .drawing import PlacedLabel, Stroke, Style
+from .projectors import CentralProjector, Projector
+
+__all__ = ["place_marks", "auto_anchor"]
+
+_COMPASS = ("w", "sw", "s", "se", "e", "ne", "n", "nw")
+
+
+def auto_anchor(dx: float, dy: float) -> str:
+    """The anchor that puts text on the side ``(dx, dy)`` points to.
+
+    >>> auto_anchor(1.0, 0.0), auto_anchor(0.0, 1.0), auto_anchor(-1.0, -1.0)
+    ('w', 's', 'ne')
+    """
+    if dx == 0 and dy == 0:
+        return "center"
+    k = round(math.atan2(dy, dx) / (math.pi / 4)) % 8
+    return _COMPASS[k]
+
+
+def _hidden(xyz: np.ndarray, xy: np.ndarray, occlusion: Any) -> np.ndarray:
+    if not len(xyz):
+        return np.zeros(0, bool)
+    n = len(xyz)
+    return occlusion.hidden(xyz, xy, np.full(n, -1), np.full(n, OFF, dtype=np.int8))
+
+
+def _project(kind: str, xyz: np.ndarray, projector: Projector) -> np.ndarray:
+    if isinstance(projector, CentralProjector) and len(xyz):
+        behind = projector.depth(xyz) <= 0
+        if behind.any():
+            raise ValueError(
+                f"CentralProjector: a {kind} at {xyz[np.argmax(behind)].tolist()} lies at or "
+                "behind the eye; move the eye farther away"
+            )
+    return projector.project(xyz).reshape(-1, 2)
+
+
+def place_marks(
+    labels: tuple[Any, ...],
+    points: tuple[Any, ...],
+    projector: Projector,
+    occlusion: Any,
+    hidden_lines: bool,
+    hidden_style: Style,
+) -> tuple[list[PlacedLabel], list[Stroke]]:
+    """Placed labels and point strokes of a scene's (world-coordinate) marks."""
+    placed: list[PlacedLabel] = []
+    if labels:
+        xyz = np.array([lab.at for lab in labels], dtype=float)
+        xy = _project("label", xyz, projector)
+        hid = _hidden(xyz, xy, occlusion)
+        for lab, p, q, h in zip(labels, xyz, xy, hid.tolist()):
+            h = h and not lab.always
+            if h and not hidden_lines:
+                continue
+            anchor = lab.anchor
+            if anchor == "auto":
+                step = 1e-6 * max(1.0, float(np.linalg.norm(p)))
+                d = projector.project(p + step * lab.direction / np.linalg.norm(lab.direction))
+                anchor = auto_anchor(*(np.asarray(d) - q).tolist())
+            color = lab.color if lab.color is not None else (0.0, 0.0, 0.0)
+            style = Style(color=hidden_style.color if h else color)
+            placed.append(PlacedLabel(lab.text, q, p, not h, anchor, lab.offset, lab.size, style))
+    strokes: list[Stroke] = []
+    if points:
+        xyz = np.array([pt.at for pt in points], dtype=float)
+        xy = _project("point", xyz, projector)
+        hid = _hidden(xyz, xy, occlusion)
+        for pt, p, q, h in zip(points, xyz, xy, hid.tolist()):
+            h = h and not pt.always
+            if h and not hidden_lines:
+                continue
+            base = hidden_style if h else (pt.style or Style())
+            style = Style(color=base.color, width=pt.size)
+            strokes.append(
+                Stroke(
+                    xy=np.array([q, q]),
+                    xyz=np.array([p, p]),
+                    visible=not h,
+                    family="point",
+                    style=style,
+                )  # fmt: skip
+            )
+    return placed, strokes
