@@ -76,6 +76,8 @@ _A = (
 _B = (35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84)
 _E = (71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40)
 # the quartic term of the continuous extension (Hairer, Norsett and Wanner's DOPRI5)
+#: a step ends on an edge or the seed when that lies within this fraction of its end
+_END_RTOL = 1e-7
 _D = (-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799,
       -10690763975 / 1880347072, 701980252875 / 199316789632,
       -1453857185 / 822651844, 69997945 / 29380423)  # fmt: skip
@@ -117,30 +119,28 @@ def _dense_at(y0: np.ndarray, k0: np.ndarray, y1: np.ndarray, k1: np.ndarray,
 
 def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.ndarray:
     """The fraction where each cubic (which starts inside the box ``lo..hi``
-    and ends outside it) first leaves it, to ~1e-16 (bisection)."""
-    a, b = np.zeros(len(C)), np.ones(len(C))
-    grid = np.linspace(0.0, 1.0, 17)  # first, the first of 16 parts that ends outside
+    and ends outside it) first leaves it: the first of 16 parts that ends
+    outside, then safeguarded Newton steps on the excess over the box."""
+    grid = np.linspace(0.0, 1.0, 17)
     t = grid[None, :, None]
     p = ((C[:, None, 3] * t + C[:, None, 2]) * t + C[:, None, 1]) * t + C[:, None, 0]
-    outside = (((p < lo) | (p > hi)) & ~per).any(axis=2)
-    first = np.argmax(outside, axis=1)
+    first = np.argmax((((p < lo) | (p > hi)) & ~per).any(axis=2), axis=1)
     a, b = grid[first - 1], grid[first]
-    # safeguarded Newton on the excess over the box (positive outside)
     lo_, hi_ = np.where(per, -np.inf, lo), np.where(per, np.inf, hi)
     one = np.ones(len(C))
-    for _ in range(12):
-        c = 0.5 * (a + b) if _ == 0 else c  # noqa: F821 - set below
+    rows = np.arange(len(C))
+    c = 0.5 * (a + b)
+    for _ in range(6):
         p, dp = _at(C, c, one)
-        excess = np.maximum(lo_ - p, p - hi_)
+        excess = np.maximum(lo_ - p, p - hi_)  # > 0 outside
         i = np.argmax(excess, axis=1)
-        rows = np.arange(len(C))
         f = excess[rows, i]
         df = np.where(p[rows, i] > hi_[i], dp[rows, i], -dp[rows, i])
         a, b = np.where(f > 0, a, c), np.where(f > 0, c, b)
         with np.errstate(invalid="ignore", divide="ignore"):
             c = c - f / df
         c = np.where((c > a) & (c < b), c, 0.5 * (a + b))
-    return a
+    return c
 
 
 def _rel(p: np.ndarray, seed: np.ndarray, span: np.ndarray, per: np.ndarray) -> np.ndarray:
@@ -245,16 +245,14 @@ class FieldLines:
 
 
 def _finish(ends: tuple, rows: np.ndarray, th: np.ndarray, target: np.ndarray) -> None:
-    """End the steps ``rows`` on ``target`` (a patch edge or the seed): the
-    step itself where it ends there (``th`` ~ 1), else a tiny step from its
-    start (``th`` of the step, which is then no longer than ~10 minimal steps).
-    ``ends`` holds the step's arrays, changed in place."""
-    h, hstep, k0, y1, k1, r5, stop_here = ends
-    tiny = th < 1 - 1e-9
-    t = rows[tiny]
-    hstep[t] = th[tiny] * h[t]
-    k1[t], r5[t] = k0[t], 0.0
-    y1[rows] = target
+    """End the steps ``rows`` on ``target`` (a patch edge or the seed) where
+    the step ends there (``th`` ~ 1); where it would end a tiny step
+    (about ``FIELD_MIN_STEP``) after its start, the line ends at the start
+    instead.  ``ends`` holds the step's arrays, changed in place."""
+    y1, stop_here, drop = ends
+    full = th >= 1 - _END_RTOL
+    y1[rows[full]] = target[full]
+    drop[rows[~full]] = True
     stop_here[rows] = True
 
 
@@ -364,20 +362,19 @@ def trace(
         y1, k1n = y5[g].copy(), k7[g].copy()
         r5 = hg[:, None] * sum(c * kj[g] for c, kj in zip(_D, ks) if c)
         stop_here = np.zeros(len(g), bool)
-        hstep = hg.copy()
         redo = np.full(len(g), np.nan)  # retry with this step (ends on an edge or the seed)
 
-        k0 = k1[g]
-        ends = (hg, hstep, k0, y1, k1n, r5, stop_here)
+        drop = np.zeros(len(g), bool)  # ends where it starts: no new node
+        ends = (y1, stop_here, drop)
         # leaving the patch across a non-periodic side: end exactly on it
         out = np.flatnonzero((((y1 < lo) | (y1 > hi)) & ~per).any(axis=1))
         if len(out):
             th = _exit(C[out], lo, hi, per)
-            last = (th >= 1 - 1e-9) | (th * hg[out] <= 10 * hmin)
-            p, _ = _at(C[out[last]], np.where(th[last] >= 1 - 1e-9, 1.0, th[last]), hg[out[last]])
-            _finish(ends, out[last], th[last],
-                   np.clip(p, np.where(per, -np.inf, lo), np.where(per, np.inf, hi)))  # fmt: skip
-            redo[out[~last]] = th[~last] * hg[out[~last]]
+            last = (th >= 1 - _END_RTOL) | (th * hg[out] <= 10 * hmin)
+            box = (np.where(per, -np.inf, lo), np.where(per, np.inf, hi))
+            _finish(ends, out[last], th[last], np.clip(y1[out[last]], *box))
+            # retry with a step that ends just past the edge
+            redo[out[~last]] = np.minimum(th[~last] * (1 + 0.1 * _END_RTOL), 1) * hg[out[~last]]
         # closing: a forward line passing its seed again after leaving it
         f = np.flatnonzero((act[g] < m) & np.isnan(redo) & ~stop_here)
         if len(f):
@@ -390,7 +387,7 @@ def trace(
                 seed = seeds[act[g[near]]]
                 th, p, _ = _closest(C[near], np.ones(len(near)), hg[near], seed, span, per)
                 hit = np.abs(_rel(p, seed, span, per)).max(axis=1) < FIELD_CLOSE_RTOL
-                last = hit & ((th >= 1 - 1e-9) | (th * hg[near] <= 10 * hmin))
+                last = hit & ((th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin))
                 # the loop ends exactly on its seed (shifted by whole periods)
                 shift = _rel(p[last], seed[last], span, per) * span
                 _finish(ends, near[last], th[last], p[last] - shift)
@@ -399,12 +396,11 @@ def trace(
                 redo[near[hit & ~last]] = th[hit & ~last] * hg[near[hit & ~last]]
         again = ~np.isnan(redo)
         H[act[g[again]]] = redo[again]
-        keep = g[~again]
-        acc = act[keep]
-        sel = ~again
+        sel = ~again & ~drop
+        acc = act[g[sel]]
         Y[acc], K[acc] = y1[sel], k1n[sel]
-        S[acc] += hstep[sel]
-        alive[act[g[stop_here]]] = False
+        S[acc] += hg[sel]
+        alive[act[g[stop_here]]] = False  # after their last node
         alive[acc[S[acc] >= length * (1 - 1e-12)]] = False
         rec_i.append(acc)
         rec_s.append(S[acc].copy())
@@ -547,9 +543,9 @@ def _distance_to(points: np.ndarray, ids: np.ndarray, queries: np.ndarray) -> np
     return best
 
 
-def _select(surface: Any, lines: FieldLines, n: int, grid: tuple) -> list[int]:
-    """``n`` of the traced ``lines`` spread as evenly over the patch as they
-    allow, none retracing another.
+def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tuple) -> list[int]:
+    """``n`` of the traced lines ``cand`` spread as evenly over the patch as
+    they allow, none retracing another.
 
     Greedy: each pick is the candidate line that minimizes the area-weighted
     mean squared distance of the patch (grid points) to the lines picked so
@@ -562,7 +558,7 @@ def _select(surface: Any, lines: FieldLines, n: int, grid: tuple) -> list[int]:
     size = float(surface.size)
     _G, GP, weight = grid
     coarse = 1e-2 * size
-    cand = [k for k in range(lines.m) if lines.ends[0, k] + lines.ends[1, k] > 0]
+    cand = [int(k) for k in cand if lines.ends[0, k] + lines.ends[1, k] > 0]
     if not cand:
         return []
     dist = np.empty((len(cand), len(GP)))
@@ -635,7 +631,7 @@ def field_line_batches(
     stop = _stop_of(field) if stop is None else stop
     c = _center_seed(surface, field, stop)
     D, _, G = field(surface, np.array([c]))
-    both = trace(surface, field, [c, c], D[0], stop=stop)
+    both = trace(surface, field, [c, c], D[0], stop=stop, rtol=1e-7)  # places seeds only
     # the branch running like the u1 = const lines (along x2) at the centre
     x1, x2 = surface.derivatives(c[0], c[1])
     e = D[0, :, :1] * x1 + D[0, :, 1:] * x2
@@ -646,25 +642,32 @@ def field_line_batches(
         return even_batches(surface, field, both, a, n1, n2, stop, family)
     grid = _grid(surface, field, stop)
     G, _, weight = grid
-    # candidate seeds: many along the transversal (regular spacing where the
-    # lines cross it) and a coarse grid over the patch (the parts they miss)
-    coarse = np.flatnonzero(weight > 0)[:: max(len(G) // 36, 1)]
-    out = []
+    # candidate seeds of both families, traced together: many along the
+    # transversal (regular spacing where the lines cross it) and a coarse
+    # grid over the patch (the parts they miss)
+    coarse = np.flatnonzero(weight > 0)[:: max(len(G) // 25, 1)]
+    seeds, dirs, fam = [], [], []
     for which, n in ((a, n1), (1 - a, n2)):
         if n <= 0:
             continue
         transversal = 1 - which  # the line of the other branch through the centre
-        seeds, dirs = np.array([c]), D[0, which][None]
+        s_f, d_f = np.array([c]), D[0, which][None]
         if both.ends[0, transversal] + both.ends[1, transversal] > 0:
             s_t, tangent = _spread(both, transversal, 2 * n + 1)
-            seeds = np.concatenate([seeds, s_t])
-            dirs = np.concatenate([dirs, _crossing(field, surface, s_t, tangent)])
-        seeds = np.concatenate([seeds, G[coarse]])
-        dirs = np.concatenate([dirs, field(surface, G[coarse])[0][:, which]])
-        keep = _stable(surface, field, seeds, dirs)
-        seeds, dirs = seeds[keep], dirs[keep]
-        lines = trace(surface, field, seeds, dirs, stop=stop)
-        b = lines.batch(family, _select(surface, lines, n, grid))
+            s_f = np.concatenate([s_f, s_t])
+            d_f = np.concatenate([d_f, _crossing(field, surface, s_t, tangent)])
+        s_f = np.concatenate([s_f, G[coarse]])
+        d_f = np.concatenate([d_f, field(surface, G[coarse])[0][:, which]])
+        keep = _stable(surface, field, s_f, d_f)
+        seeds.append(s_f[keep])
+        dirs.append(d_f[keep])
+        fam.append(np.full(int(keep.sum()), n))
+    lines = trace(surface, field, np.concatenate(seeds), np.concatenate(dirs), stop=stop)
+    out, start = [], 0
+    for f in fam:
+        cand = np.arange(start, start + len(f))
+        start += len(f)
+        b = lines.batch(family, _select(surface, lines, cand, int(f[0]) if len(f) else 0, grid))
         if b is not None:
             out.append(b)
     return out
