@@ -80,7 +80,11 @@ RULED_DEVELOPABLE_RTOL = 1e-7
 
 # -- numeric line fields (lgraph.fieldlines) ---------------------------------
 #: local error allowed per integration step, relative to the parameter spans
-FIELD_RTOL = 2e-11
+#: (lines of curvature: positions to ~1e-8 of the patch) ...
+FIELD_RTOL = 1e-9
+#: ... and for asymptotic lines, whose tangent is what is seen (II(t) = 0): the
+#: interpolant's tangent then satisfies it to ~1e-7 relative
+ASYMPTOTIC_RTOL = 2e-11
 #: first and largest step, relative to the surface's size
 FIELD_FIRST_STEP = 1e-2
 FIELD_MAX_STEP = 5e-2
@@ -97,7 +101,7 @@ UMBILIC_STOP = 2e-3
 #: ... and an asymptotic line where -K / (H^2 + |K|) does (a parabolic line)
 PARABOLIC_STOP = 1e-2
 #: a line closes when it passes this close to its seed (scaled parameters)
-FIELD_CLOSE_RTOL = 1e-7
+FIELD_CLOSE_RTOL = 1e-5
 #: a new line retraces a drawn one when its seed lies this close to it (of the size)
 FIELD_DUPLICATE_RTOL = 1e-5
 #: the parameter lines are the field's lines when g12 and L12 (lines of

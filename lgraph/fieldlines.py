@@ -7,8 +7,9 @@ family at once (derivation and guarantees: ``docs/mathematics.rst``, "Numeric
 line families"):
 
 * The curve parameter is 3-D arc length.  Every line advances in lockstep with
-  its own step size (Dormand and Prince's embedded 5(4) pair, error per step
-  below :data:`~lgraph._tolerance.FIELD_RTOL` of the parameter spans), so one
+  its own step size (Dormand and Prince's embedded 5(4) pair, error per step below
+  :data:`~lgraph._tolerance.FIELD_RTOL` of the parameter spans,
+  :data:`~lgraph._tolerance.ASYMPTOTIC_RTOL` for asymptotic lines), so one
   field evaluation serves every line.
 * At every stage a line takes the branch of the field nearest (in the
   surface's metric) to its current direction, with that direction's sign:
@@ -43,6 +44,7 @@ from typing import Any
 import numpy as np
 
 from ._tolerance import (
+    ASYMPTOTIC_RTOL,
     FIELD_CLOSE_RTOL,
     FIELD_DUPLICATE_RTOL,
     FIELD_FIRST_STEP,
@@ -87,6 +89,12 @@ def _stop_of(field: Any) -> float:
     from .curvature import asymptotic_field
 
     return PARABOLIC_STOP if field is asymptotic_field else UMBILIC_STOP
+
+
+def _rtol_of(field: Any) -> float:
+    from .curvature import asymptotic_field
+
+    return ASYMPTOTIC_RTOL if field is asymptotic_field else FIELD_RTOL
 
 
 def _cubic(y0: np.ndarray, k0: np.ndarray, y1: np.ndarray, k1: np.ndarray,
@@ -264,7 +272,7 @@ def trace(
     *,
     length: float | None = None,
     stop: float | None = None,
-    rtol: float = FIELD_RTOL,
+    rtol: float | None = None,
 ) -> FieldLines:
     """Trace the lines of ``field`` through ``seeds`` ``(m, 2)``, each starting
     along the branch nearest to ``directions[k]`` (parameter directions),
@@ -285,6 +293,7 @@ def trace(
     size = float(surface.size)
     length = FIELD_MAX_LENGTH * size if length is None else float(length)
     stop = _stop_of(field) if stop is None else float(stop)
+    rtol = _rtol_of(field) if rtol is None else float(rtol)
     span = np.array([d.span(0), d.span(1)])
     lo = np.array([d.u1[0], d.u2[0]])
     hi = np.array([d.u1[1], d.u2[1]])
@@ -379,8 +388,12 @@ def trace(
         f = np.flatnonzero((act[g] < m) & np.isnan(redo) & ~stop_here)
         if len(f):
             r0 = _rel(y[g[f]], seeds[act[g[f]]], span, per)
-            r1 = _rel(y1[f], seeds[act[g[f]]], span, per)
-            far = np.maximum(np.abs(r0).max(axis=1), np.abs(r1).max(axis=1)) > 0.05
+            r1 = r0 + (y1[f] - y[g[f]]) / span  # the chord, relative to the seed
+            dr = r1 - r0
+            with np.errstate(invalid="ignore", divide="ignore"):
+                tc = np.clip(-np.einsum("ij,ij->i", r0, dr) / np.einsum("ij,ij->i", dr, dr), 0, 1)
+            gap = np.abs(r0 + np.nan_to_num(tc)[:, None] * dr).max(axis=1)
+            far = gap > 0.05
             near = f[~far & left[act[g[f]]]]
             left[act[g[f[far]]]] = True
             if len(near):
@@ -509,16 +522,19 @@ def _crossing(field: Any, surface: Any, uv: np.ndarray, tangent: np.ndarray) -> 
 
 
 def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, np.ndarray]:
-    """Points about ``step`` apart along lines ``ks`` and the line of each."""
-    pts, ids = [], []
-    for k in ks:
-        a, b = -lines.ends[1, k], lines.ends[0, k]
-        t = np.linspace(a, b, max(int(np.ceil((b - a) / step)) + 1, 2))
-        pts.append(lines.points(k, t))
-        ids.append(np.full(len(t), k))
-    if not pts:
+    """Points about ``step`` apart along lines ``ks`` and the line of each
+    (all lines evaluated in one call)."""
+    ks = np.asarray(ks, int)
+    if not len(ks):
         return np.empty((0, 3)), np.empty(0, int)
-    return np.concatenate(pts), np.concatenate(ids)
+    a, b = -lines.ends[1, ks], lines.ends[0, ks]
+    counts = np.maximum(np.ceil((b - a) / step).astype(int) + 1, 2)
+    ids = np.repeat(ks, counts)
+    first = np.repeat(np.cumsum(counts) - counts, counts)
+    frac = (np.arange(len(ids)) - first) / np.repeat(counts - 1, counts)
+    t = np.repeat(a, counts) + frac * np.repeat(b - a, counts)
+    uv = lines.domain.wrap(lines.uv(ids, t), clip=False)
+    return lines.surface.point(uv[:, 0], uv[:, 1]), ids
 
 
 def _distance_to(points: np.ndarray, ids: np.ndarray, queries: np.ndarray) -> np.ndarray:
@@ -553,19 +569,25 @@ def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tup
     rounded to 1e-9, ties go to the earlier candidate: the choice does not
     hang on the last bits of floating point.
     """
-    from scipy.spatial import cKDTree
-
     size = float(surface.size)
     _G, GP, weight = grid
     coarse = 1e-2 * size
     cand = [int(k) for k in cand if lines.ends[0, k] + lines.ends[1, k] > 0]
     if not cand:
         return []
-    dist = np.empty((len(cand), len(GP)))
-    for row, k in enumerate(cand):
-        p, _ = _dense(lines, [k], coarse)
-        dist[row] = cKDTree(p).query(GP)[0]
-    sq = dist * dist
+    p, ids = _dense(lines, cand, coarse)
+    # squared distance of every grid point to every candidate (chunks of ~4M)
+    bounds = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
+    sq = np.empty((len(cand), len(GP)))
+    g2 = np.einsum("ij,ij->i", GP, GP)
+    p2 = np.einsum("ij,ij->i", p, p)
+    per_chunk = max(1, int(4e6 // max(len(GP) * len(p) / len(cand), 1)))
+    for c0 in range(0, len(cand), per_chunk):
+        c1 = min(c0 + per_chunk, len(cand))
+        lo_, hi_ = bounds[c0], (bounds[c1] if c1 < len(cand) else len(p))
+        d2 = g2[None, :] + p2[lo_:hi_, None] - 2 * (p[lo_:hi_] @ GP.T)
+        sq[c0:c1] = np.minimum.reduceat(d2, bounds[c0:c1] - lo_, axis=0)
+    sq = np.maximum(sq, 0.0)
     seed3 = surface.points(surface.domain.wrap(lines.uv(cand, np.zeros(len(cand))), clip=False))
     tol = FIELD_DUPLICATE_RTOL * size
     best = np.full(len(GP), np.inf)
@@ -631,7 +653,7 @@ def field_line_batches(
     stop = _stop_of(field) if stop is None else stop
     c = _center_seed(surface, field, stop)
     D, _, G = field(surface, np.array([c]))
-    both = trace(surface, field, [c, c], D[0], stop=stop, rtol=1e-7)  # places seeds only
+    both = trace(surface, field, [c, c], D[0], stop=stop, rtol=1e-6)  # places seeds only
     # the branch running like the u1 = const lines (along x2) at the centre
     x1, x2 = surface.derivatives(c[0], c[1])
     e = D[0, :, :1] * x1 + D[0, :, 1:] * x2
