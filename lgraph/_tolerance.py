@@ -81,16 +81,16 @@ RULED_DEVELOPABLE_RTOL = 1e-7
 # -- numeric line fields (lgraph.fieldlines) ---------------------------------
 #: local error allowed per integration step, relative to the parameter spans
 #: (lines of curvature: positions to ~1e-8 of the patch) ...
-FIELD_RTOL = 1e-9
+FIELD_RTOL = 1e-8
 #: ... and for asymptotic lines, whose tangent is what is seen (II(t) = 0): the
 #: interpolant's tangent then satisfies it to ~1e-7 relative
-ASYMPTOTIC_RTOL = 2e-11
+ASYMPTOTIC_RTOL = 5e-12
 #: first and largest step, relative to the surface's size
 FIELD_FIRST_STEP = 1e-2
 FIELD_MAX_STEP = 5e-2
 #: a line whose step must shrink below this (relative to the size) to stay
 #: valid has reached a singular point (umbilic, pole, edge of the field) and stops
-FIELD_MIN_STEP = 1e-9
+FIELD_MIN_STEP = 1e-7
 #: longest half line (each way from its seed), in sizes
 FIELD_MAX_LENGTH = 3.0
 #: most integration steps of one family (all lines together): bounds the work
@@ -100,6 +100,9 @@ FIELD_MAX_ITERATIONS = 20_000
 UMBILIC_STOP = 2e-3
 #: ... and an asymptotic line where -K / (H^2 + |K|) does (a parabolic line)
 PARABOLIC_STOP = 1e-2
+#: a line of curvature ends where it passes this close to an umbilic (scaled
+#: parameters): beyond it, lines near the one through the umbilic part ways
+FIELD_SINGULAR_RTOL = 2e-4
 #: a line closes when it passes this close to its seed (scaled parameters)
 FIELD_CLOSE_RTOL = 1e-5
 #: a new line retraces a drawn one when its seed lies this close to it (of the size)

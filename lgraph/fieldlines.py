@@ -53,6 +53,7 @@ from ._tolerance import (
     FIELD_MAX_STEP,
     FIELD_MIN_STEP,
     FIELD_RTOL,
+    FIELD_SINGULAR_RTOL,
     PARABOLIC_STOP,
     PARAMETER_LINES_RTOL,
     UMBILIC_STOP,
@@ -149,6 +150,16 @@ def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.
             c = c - f / df
         c = np.where((c > a) & (c < b), c, 0.5 * (a + b))
     return c
+
+
+def _chord_gap(y0: np.ndarray, y1: np.ndarray, target: np.ndarray, span: np.ndarray,
+               per: np.ndarray) -> np.ndarray:  # fmt: skip
+    """Distance (scaled parameters, max norm) of ``target`` to the chords ``y0 -> y1``."""
+    r0 = _rel(y0, target, span, per)
+    dr = (y1 - y0) / span
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tc = np.clip(-np.einsum("ij,ij->i", r0, dr) / np.einsum("ij,ij->i", dr, dr), 0, 1)
+    return np.abs(r0 + np.nan_to_num(tc)[:, None] * dr).max(axis=1)
 
 
 def _rel(p: np.ndarray, seed: np.ndarray, span: np.ndarray, per: np.ndarray) -> np.ndarray:
@@ -273,10 +284,13 @@ def trace(
     length: float | None = None,
     stop: float | None = None,
     rtol: float | None = None,
+    singular: Any = (),
 ) -> FieldLines:
     """Trace the lines of ``field`` through ``seeds`` ``(m, 2)``, each starting
     along the branch nearest to ``directions[k]`` (parameter directions),
-    forward and backward, all at once.  See the module docstring.
+    forward and backward, all at once.  Lines end where they pass within
+    :data:`~lgraph._tolerance.FIELD_SINGULAR_RTOL` of a point of ``singular``
+    (parameters of umbilics).  See the module docstring.
 
     >>> import numpy as np
     >>> import lgraph as lg
@@ -294,6 +308,7 @@ def trace(
     length = FIELD_MAX_LENGTH * size if length is None else float(length)
     stop = _stop_of(field) if stop is None else float(stop)
     rtol = _rtol_of(field) if rtol is None else float(rtol)
+    singular = np.asarray(singular, float).reshape(-1, 2)
     span = np.array([d.span(0), d.span(1)])
     lo = np.array([d.u1[0], d.u2[0]])
     hi = np.array([d.u1[1], d.u2[1]])
@@ -387,15 +402,9 @@ def trace(
         # closing: a forward line passing its seed again after leaving it
         f = np.flatnonzero((act[g] < m) & np.isnan(redo) & ~stop_here)
         if len(f):
-            r0 = _rel(y[g[f]], seeds[act[g[f]]], span, per)
-            r1 = r0 + (y1[f] - y[g[f]]) / span  # the chord, relative to the seed
-            dr = r1 - r0
-            with np.errstate(invalid="ignore", divide="ignore"):
-                tc = np.clip(-np.einsum("ij,ij->i", r0, dr) / np.einsum("ij,ij->i", dr, dr), 0, 1)
-            gap = np.abs(r0 + np.nan_to_num(tc)[:, None] * dr).max(axis=1)
-            far = gap > 0.05
-            near = f[~far & left[act[g[f]]]]
-            left[act[g[f[far]]]] = True
+            gap = _chord_gap(y[g[f]], y1[f], seeds[act[g[f]]], span, per)
+            near = f[(gap <= 0.05) & left[act[g[f]]]]
+            left[act[g[f[gap > 0.05]]]] = True
             if len(near):
                 seed = seeds[act[g[near]]]
                 th, p, _ = _closest(C[near], np.ones(len(near)), hg[near], seed, span, per)
@@ -407,6 +416,17 @@ def trace(
                 closed[act[g[near[last]]]] = True
                 alive[act[g[near[last]]] + m] = False  # the backward half is not needed
                 redo[near[hit & ~last]] = th[hit & ~last] * hg[near[hit & ~last]]
+        # reaching a singular point (an umbilic): the line ends where it passes it
+        for point in singular:
+            f = np.flatnonzero(np.isnan(redo) & ~stop_here)
+            gap = _chord_gap(y[g[f]], y1[f], np.broadcast_to(point, (len(f), 2)), span, per)
+            near = f[gap <= FIELD_SINGULAR_RTOL]
+            if len(near):
+                target = np.broadcast_to(point, (len(near), 2))
+                th, p, _ = _closest(C[near], np.ones(len(near)), hg[near], target, span, per)
+                last = (th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin)
+                _finish(ends, near[last], th[last], y1[near[last]])
+                redo[near[~last]] = th[~last] * hg[near[~last]]
         again = ~np.isnan(redo)
         H[act[g[again]]] = redo[again]
         sel = ~again & ~drop
@@ -462,6 +482,72 @@ def _parameter_lines_are_field_lines(surface: Any, field: Any) -> bool:
             return bool(np.all(small <= PARAMETER_LINES_RTOL)) and bool(kappa > 0)
         small = np.maximum(np.abs(g12) / scale, np.abs(L12) / scale / kappa)
     return bool(np.all(small <= PARAMETER_LINES_RTOL))
+
+
+def _umbilic_residual(surface: Any, uv: np.ndarray, kappa: float) -> np.ndarray:
+    """``(A, B, C)`` of equation (3.3) (``A du1^2 + B du1 du2 + C du2^2 = 0``),
+    scaled: all three vanish exactly at umbilics (flat ones included)."""
+    from .curvature import _frame
+
+    _x1, _x2, (g11, g12, g22), (L11, L12, L22) = _frame(surface, uv)
+    scale = (g11 * g22 * kappa)[:, None]
+    return np.stack([L11 * g12 - L12 * g11, L11 * g22 - L22 * g11, L12 * g22 - L22 * g12],
+                    axis=1) / scale  # fmt: skip
+
+
+def umbilics(surface: Any, n: int = 24) -> np.ndarray:
+    """Parameters ``(k, 2)`` of the umbilics of the drawn patch (flat ones
+    included): local minima of the residual of (3.3) on an ``n x n`` grid,
+    refined by Gauss-Newton steps (finite-difference Jacobian), kept where
+    the residual vanishes to 1e-9.
+
+    >>> import lgraph as lg
+    >>> umbilics(lg.MonkeySaddle()).round(9).tolist()
+    [[0.0, 0.0]]
+    """
+    from scipy.ndimage import minimum_filter
+
+    from .curvature import _frame
+
+    d = surface.domain
+    span = np.array([d.span(0), d.span(1)])
+    lo = np.array([d.u1[0], d.u2[0]])
+    axes = [lo[i] + span[i] * (np.arange(n) + 0.5) / n for i in (0, 1)]
+    G = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 2)
+    _x1, _x2, (g11, _g12, g22), (L11, L12, L22) = _frame(surface, G)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        k = np.abs(L11) / g11 + np.abs(L22) / g22 + 2 * np.abs(L12) / np.sqrt(g11 * g22)
+    kappa = float(np.nanmax(k)) if np.isfinite(k).any() else 0.0
+    if not kappa > 0:
+        return np.empty((0, 2))
+    r = np.linalg.norm(_umbilic_residual(surface, G, kappa), axis=1)
+    r = np.where(np.isfinite(r), r, np.inf).reshape(n, n)
+    mode = ["wrap" if p else "nearest" for p in d.periodic]
+    low = np.flatnonzero(((r == minimum_filter(r, size=3, mode=mode)) & (r < 0.5)).ravel())
+    u = G[low[np.argsort(r.ravel()[low])][:64]]
+    h = 1e-6 * span
+    for _ in range(30):  # Gauss-Newton on the three residuals
+        f = _umbilic_residual(surface, d.wrap(u, clip=False), kappa)
+        J = np.stack([(_umbilic_residual(surface, d.wrap(u + e, clip=False), kappa) - f) / e.sum()
+                      for e in (np.array([h[0], 0.0]), np.array([0.0, h[1]]))], axis=2)  # fmt: skip
+        M = np.einsum("kia,kib->kab", J, J)  # normal equations, solved by hand (2 x 2)
+        b = -np.einsum("kia,ki->ka", J, f)
+        det = M[:, 0, 0] * M[:, 1, 1] - M[:, 0, 1] * M[:, 1, 0]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            adj_b = np.stack([M[:, 1, 1] * b[:, 0] - M[:, 0, 1] * b[:, 1],
+                              M[:, 0, 0] * b[:, 1] - M[:, 1, 0] * b[:, 0]], axis=1)  # fmt: skip
+            step = adj_b / det[:, None]
+        u = u + np.clip(np.nan_to_num(step), -0.1 * span, 0.1 * span)
+    f = np.linalg.norm(_umbilic_residual(surface, d.wrap(u, clip=False), kappa), axis=1)
+    u = d.wrap(u, clip=False)
+    inside = np.all((u >= lo) & (u <= lo + span), axis=1)
+    u = u[(f < 1e-9) & inside]
+    keep: list[np.ndarray] = []
+    for p in u[np.lexsort((u[:, 1], u[:, 0]))]:
+        if all(np.abs(_rel(p[None], q[None], span, np.array(d.periodic))).max() > 1e-6
+               for q in keep):  # fmt: skip
+            keep.append(p)
+    return np.array(keep).reshape(-1, 2)
 
 
 def _center_seed(surface: Any, field: Any, stop: float) -> np.ndarray:
@@ -571,7 +657,7 @@ def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tup
     """
     size = float(surface.size)
     _G, GP, weight = grid
-    coarse = 1e-2 * size
+    coarse = 2e-2 * size
     cand = [int(k) for k in cand if lines.ends[0, k] + lines.ends[1, k] > 0]
     if not cand:
         return []
@@ -609,7 +695,7 @@ def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tup
     return sorted(picked)
 
 
-def _grid(surface: Any, field: Any, stop: float, n: int = 30) -> tuple:
+def _grid(surface: Any, field: Any, stop: float, n: int = 24) -> tuple:
     """Grid points of the patch where the field is well defined: parameters,
     points and area weights (zero where the field is not)."""
     d = surface.domain
@@ -651,9 +737,13 @@ def field_line_batches(
     if _parameter_lines_are_field_lines(surface, field):
         return parameter_line_batches(surface, d.lines(0, n1), d.lines(1, n2), family, family)
     stop = _stop_of(field) if stop is None else stop
+    from .curvature import principal_field
+
+    singular = umbilics(surface) if field is principal_field else np.empty((0, 2))
     c = _center_seed(surface, field, stop)
     D, _, G = field(surface, np.array([c]))
-    both = trace(surface, field, [c, c], D[0], stop=stop, rtol=1e-6)  # places seeds only
+    # the lines through the centre place seeds only: a loose tolerance will do
+    both = trace(surface, field, [c, c], D[0], stop=stop, rtol=1e-6, singular=singular)
     # the branch running like the u1 = const lines (along x2) at the centre
     x1, x2 = surface.derivatives(c[0], c[1])
     e = D[0, :, :1] * x1 + D[0, :, 1:] * x2
@@ -661,7 +751,7 @@ def field_line_batches(
     if spacing == "even":
         from ._even_spacing import even_batches
 
-        return even_batches(surface, field, both, a, n1, n2, stop, family)
+        return even_batches(surface, field, both, a, n1, n2, stop, family, singular)
     grid = _grid(surface, field, stop)
     G, _, weight = grid
     # candidate seeds of both families, traced together: many along the
@@ -684,7 +774,9 @@ def field_line_batches(
         seeds.append(s_f[keep])
         dirs.append(d_f[keep])
         fam.append(np.full(int(keep.sum()), n))
-    lines = trace(surface, field, np.concatenate(seeds), np.concatenate(dirs), stop=stop)
+    lines = trace(
+        surface, field, np.concatenate(seeds), np.concatenate(dirs), stop=stop, singular=singular
+    )
     out, start = [], 0
     for f in fam:
         cand = np.arange(start, start + len(f))

@@ -81,8 +81,12 @@ def _fd_forms(S, u1, u2, h=1e-4):
 def _angles_33(S, batches):
     """Angle between each line's tangent and the nearer direction solving (3.3)."""
     out = []
-    for _b, _k, t, _x, uv in _samples(batches, 200):
-        du = np.gradient(uv, t, axis=0)  # parameter tangent, by differences in t
+    for b, k, t, _x, uv in _samples(batches, 200):
+        # parameter tangent of the drawn curve, by central differences in t
+        h = 1e-6 * (b.t1[k] - b.t0[k])
+        idx = np.full(len(t), k)
+        (_, up), (_, um) = b.evaluate(idx, t + h), b.evaluate(idx, t - h)
+        du = (up - um) / (2 * h)
         inner = slice(2, -2)
         u, d = uv[inner], du[inner]
         x1, x2, (g11, g12, g22), (L11, L12, L22) = _fd_forms(S, u[:, 0], u[:, 1])
