@@ -63,7 +63,6 @@ from .families import SPACINGS, parameter_line_batches
 
 __all__ = ["FieldLines", "trace", "field_line_batches"]
 
-_DEBUG: list = []
 
 # Dormand-Prince 5(4): nodes, stage coefficients, 5th-order weights, and the
 # difference of the 5th- and 4th-order weights (7 stages, the last one is the
@@ -353,8 +352,6 @@ def trace(
         act = np.flatnonzero(alive)
         if not len(act):
             break
-        if _DEBUG:
-            _DEBUG.append(len(act))
         y, k1 = Y[act], K[act]
         h = np.minimum(H[act], length - S[act])
         ks = [k1]
@@ -526,7 +523,7 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
     low = np.flatnonzero(((r == minimum_filter(r, size=3, mode=mode)) & (r < 0.5)).ravel())
     u = G[low[np.argsort(r.ravel()[low])][:64]]
     h = 1e-6 * span
-    for _ in range(30):  # Gauss-Newton on the three residuals
+    for _ in range(12):  # Gauss-Newton on the three residuals
         f = _umbilic_residual(surface, d.wrap(u, clip=False), kappa)
         J = np.stack([(_umbilic_residual(surface, d.wrap(u + e, clip=False), kappa) - f) / e.sum()
                       for e in (np.array([h[0], 0.0]), np.array([0.0, h[1]]))], axis=2)  # fmt: skip
@@ -623,28 +620,6 @@ def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, np.ndar
     return lines.surface.point(uv[:, 0], uv[:, 1]), ids
 
 
-def _distance_to(points: np.ndarray, ids: np.ndarray, queries: np.ndarray) -> np.ndarray:
-    """Distance of ``queries`` to the polylines ``points`` (consecutive points
-    of the same id form segments)."""
-    from scipy.spatial import cKDTree
-
-    if not len(points):
-        return np.full(len(queries), np.inf)
-    _, j = cKDTree(points).query(queries)
-    best = np.linalg.norm(points[j] - queries, axis=1)
-    for nb in (j - 1, j + 1):
-        nbc = np.clip(nb, 0, len(points) - 1)
-        same = (nb >= 0) & (nb < len(points)) & (ids[nbc] == ids[j])
-        a, b = points[j], points[nbc]
-        ab = b - a
-        with np.errstate(invalid="ignore", divide="ignore"):
-            tt = np.clip(np.einsum("ij,ij->i", queries - a, ab) / np.einsum("ij,ij->i", ab, ab),
-                         0.0, 1.0)  # fmt: skip
-        dist = np.linalg.norm(a + np.nan_to_num(tt)[:, None] * ab - queries, axis=1)
-        best = np.where(same, np.minimum(best, dist), best)
-    return best
-
-
 def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tuple) -> list[int]:
     """``n`` of the traced lines ``cand`` spread as evenly over the patch as
     they allow, none retracing another.
@@ -675,23 +650,41 @@ def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tup
         sq[c0:c1] = np.minimum.reduceat(d2, bounds[c0:c1] - lo_, axis=0)
     sq = np.maximum(sq, 0.0)
     seed3 = surface.points(surface.domain.wrap(lines.uv(cand, np.zeros(len(cand))), clip=False))
+    # which candidate seeds lie on which other candidate line (it would be
+    # drawn twice): segments of the fine polylines next to each seed
+    from scipy.spatial import cKDTree
+
     tol = FIELD_DUPLICATE_RTOL * size
+    fine = 2e-3 * size
+    q, qid = _dense(lines, cand, fine)
+    row_of = {k: r for r, k in enumerate(cand)}
+    on_line = np.zeros((len(cand), len(cand)), bool)
+    for j, near in enumerate(cKDTree(q).query_ball_point(seed3, r=fine + tol)):
+        near = np.asarray(near, int)
+        near = near[qid[near] != cand[j]]
+        if not len(near):
+            continue
+        a = np.concatenate([near, near])
+        b = np.concatenate([np.maximum(near - 1, 0), np.minimum(near + 1, len(q) - 1)])
+        a, b = a[qid[a] == qid[b]], b[qid[a] == qid[b]]
+        ab = q[b] - q[a]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            tt = np.clip(np.einsum("ij,ij->i", seed3[j] - q[a], ab)
+                         / np.einsum("ij,ij->i", ab, ab), 0, 1)  # fmt: skip
+        dist = np.linalg.norm(q[a] + np.nan_to_num(tt)[:, None] * ab - seed3[j], axis=1)
+        for k in np.unique(qid[a][dist <= tol]):
+            on_line[j, row_of[int(k)]] = True
     best = np.full(len(GP), np.inf)
     usable = np.ones(len(cand), bool)
     picked: list[int] = []
-    pts, ids = np.empty((0, 3)), np.empty(0, int)
     while len(picked) < n and usable.any():
         energy = np.minimum(best, sq) @ weight
         energy = np.round(energy / max(float(energy[usable].max()), 1e-300), 9)
         row = int(np.flatnonzero(usable)[np.argmin(energy[usable])])
-        usable[row] = False
-        k = cand[row]
-        if _distance_to(pts, ids, seed3[row : row + 1])[0] <= tol:
-            continue  # retraces a line already picked
-        picked.append(k)
+        picked.append(cand[row])
         best = np.minimum(best, sq[row])
-        p, i = _dense(lines, [k], 2e-3 * size)
-        pts, ids = np.concatenate([pts, p]), np.concatenate([ids, i])
+        usable[row] = False
+        usable[on_line[:, row] | on_line[row]] = False  # the same line again
     return sorted(picked)
 
 

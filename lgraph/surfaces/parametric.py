@@ -53,7 +53,8 @@ def _callable(owner: str) -> Callable[[Any, Any, Any], None]:
 
 
 def _stack(*c: np.ndarray) -> np.ndarray:
-    shape = np.broadcast_shapes(*(np.shape(x) for x in c))
+    shapes = {np.shape(x) for x in c}
+    shape = shapes.pop() if len(shapes) == 1 else np.broadcast_shapes(*shapes)
     out = np.empty(shape + (len(c),))
     for i, x in enumerate(c):
         out[..., i] = x
