@@ -6,9 +6,9 @@ import lgraph as lg
 
 CAPTION = (
     "Lines of curvature on the monkey saddle z = 0.6 (x^3 - 3xy^2), |x|, |y| <= 1, integrated "
-    "numerically from the principal direction field and seeded to lie evenly spaced (lines "
-    "are cut where they come closer than half the spacing to another line of the family); "
-    "they stop at the flat umbilic at the origin."
+    "numerically from the principal direction field: 14 complete lines of each family, each "
+    "running from edge to edge of the patch or into the flat umbilic at the origin, chosen to "
+    "cover the patch as evenly as the lines allow."
 )
 
 
