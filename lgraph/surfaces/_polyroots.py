@@ -27,8 +27,8 @@ def real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
     must not wander off into a false root).  ``size`` is a scalar or one
     value per row.
 
-    >>> real_roots(np.array([[1.0, -3.0, 2.0]]), 1.0).round(12).tolist()
-    [[2.0, 1.0]]
+    >>> np.sort(real_roots(np.array([[1.0, -3.0, 2.0]]), 1.0)).round(12).tolist()
+    [[1.0, 2.0]]
     """
     coef = np.asarray(coef, dtype=float)
     n, deg = len(coef), coef.shape[1] - 1
@@ -57,8 +57,9 @@ def all_real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
     leading coefficients below ``1e-13`` of the row's largest are dropped
     (rows of each degree solved together); ``(n, deg)``, NaN-padded.
 
-    >>> all_real_roots(np.array([[0.0, 1.0, -1.0], [1.0, 0.0, -4.0]]), 1.0).round(12).tolist()
-    [[1.0, nan], [2.0, -2.0]]
+    >>> np.sort(all_real_roots(np.array([[0.0, 1.0, -1.0], [1.0, 0.0, -4.0]]), 1.0)).round(12)
+    array([[ 1., nan],
+           [-2.,  2.]])
     """
     coef = np.asarray(coef, dtype=float)
     n, deg = len(coef), coef.shape[1] - 1
