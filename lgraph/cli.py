@@ -38,6 +38,8 @@ def _render(args: argparse.Namespace) -> int:
         print(f"lgraph render: {e}", file=sys.stderr)
         return 2
     drawing = scene.render(projector, **options.get("render", {}))
+    if args.plotter:
+        drawing = drawing.for_plotter()
     out = args.output or str(Path(args.scene).with_suffix(".pdf"))
     save = dict(options.get("save", {}))
     for name in ("width", "height"):  # the command line wins over the scene file
@@ -78,6 +80,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     r.add_argument("--width", help="figure width, e.g. 8.5cm, 85mm, 3.3in, 240pt")
     r.add_argument("--height", help="figure height (with --width: fit inside, aspect kept)")
+    r.add_argument(
+        "--plotter",
+        action="store_true",
+        help="clean for a pen plotter: merge paths, drop duplicates and fragments, "
+        "sort for short pen-up travel (Drawing.for_plotter)",
+    )
     r.set_defaults(func=_render)
     g = sub.add_parser("gallery", help="build every gallery figure (PDF + PNG) and index.html")
     g.add_argument("outdir", help="output folder (created if missing)")

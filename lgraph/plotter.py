@@ -44,6 +44,7 @@ from typing import Any
 import attrs
 import numpy as np
 
+from ._tolerance import DUPLICATE_MIN_END
 from .layers import check_layer_mode, layer_keys
 from .units import UNITS, length_pt, to_unit
 
@@ -149,7 +150,7 @@ def _dedupe(pages: list[np.ndarray], rank: np.ndarray, tol: float) -> list[list[
         cov[hit - lo] = True
         gs = gstart[s0:s1] - lo
         seg_cov = np.logical_and.reduceat(cov, gs) & cov[gs + per[s0:s1]]
-        seg_keep = ~seg_cov
+        seg_keep = ~_duplicates(seg_cov, lengths[s0:s1], tol)
         ks = np.repeat(seg_keep, group[s0:s1])
         ks[gs + per[s0:s1]] |= seg_keep  # a kept segment keeps its end sample
         kept_sample[lo:hi] = ks
@@ -157,6 +158,23 @@ def _dedupe(pages: list[np.ndarray], rank: np.ndarray, tol: float) -> list[list[
         starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
         out[r] = [(int(u), int(v) + 1) for u, v in zip(starts, stops)]  # vertex ranges
     return out
+
+
+def _duplicates(covered: np.ndarray, lengths: np.ndarray, tol: float) -> np.ndarray:
+    """Segments to remove: all of them when all are covered, else covered
+    stretches at the ends at least DUPLICATE_MIN_END tolerances long (a
+    covered stretch inside is a crossing or a tangency: it stays)."""
+    if covered.all():
+        return covered
+    remove = np.zeros(len(covered), bool)
+    arc = np.concatenate([[0.0], np.cumsum(lengths)])
+    head = int(np.argmin(covered))  # covered segments before the first uncovered one
+    tail = int(np.argmin(covered[::-1]))
+    if arc[head] >= DUPLICATE_MIN_END * tol:
+        remove[:head] = True
+    if arc[-1] - arc[len(covered) - tail] >= DUPLICATE_MIN_END * tol:
+        remove[len(covered) - tail :] = True
+    return remove
 
 
 def _chains(ends: np.ndarray, keys: list[Any], lengths: np.ndarray, tol: float) -> list[list]:
