@@ -6,7 +6,8 @@ a family of curves (``layers="family"``: ``contour``, ``u1``, ``curvature``,
 ...) or a surface (``layers="surface"``: ``ellipsoid``, ``sphere-2``, free
 curves in ``curves``); hidden parts always get their own layer (``hidden``).
 Strokes of one group drawn in different styles are split into several layers
-(``contour``, ``contour-2``), so every layer has exactly one style.  With
+(``u1``, ``u1-2``; per surface ``ellipsoid``, ``ellipsoid-contour``), so every
+layer has exactly one style.  With
 ``layers=None`` everything is one layer, ``all`` (if all strokes share a style).
 
 Layers are numbered from 1 in the order the strokes are drawn (hidden parts
@@ -104,7 +105,8 @@ def layer_keys(strokes: Iterable[Any], mode: str | None = "family") -> list[str]
     """The layer name of every stroke (strokes in drawing order).
 
     A group whose strokes have different styles is split: its first style
-    keeps the group's name, the next ones get ``-2``, ``-3``, ...
+    keeps the group's name, the next ones get ``-2``, ``-3``, ... (per surface:
+    the family of their first stroke, ``ellipsoid-contour``).
 
     >>> import numpy as np
     >>> from lgraph.drawing import Stroke, Style
@@ -116,14 +118,22 @@ def layer_keys(strokes: Iterable[Any], mode: str | None = "family") -> list[str]
     mode = check_layer_mode(mode)
     strokes = list(strokes)
     groups = _group_names(strokes, mode)
-    styles: dict[str, list[Any]] = {}
+    styles: dict[str, dict[Any, str]] = {}
+    taken: set[str] = set(groups)
     out = []
     for group, s in zip(groups, strokes):
-        seen = styles.setdefault(group, [])
+        seen = styles.setdefault(group, {})
         if s.style not in seen:
-            seen.append(s.style)
-        k = seen.index(s.style)
-        out.append(group if k == 0 else f"{group}-{k + 1}")
+            name = group
+            if seen:  # a further style: per surface named after its family, else numbered
+                name = f"{group}-{_clean(s.family)}" if mode == "surface" else f"{group}-2"
+                k = 2
+                while name in taken:
+                    k += 1
+                    name = f"{group}-{k}"
+            taken.add(name)
+            seen[s.style] = name
+        out.append(seen[s.style])
     return out
 
 
