@@ -245,3 +245,21 @@ def test_nan_breaks_and_empty_drawings() -> None:
     assert len(clean.strokes) == 4
     assert len(Drawing(strokes=()).for_plotter().strokes) == 0
     assert Drawing(strokes=()).pen_up_length() == 0.0
+
+
+def test_command_line_plotter_flag(tmp_path) -> None:  # noqa: ANN001
+    from lgraph.cli import main
+
+    scene = tmp_path / "fig.toml"
+    scene.write_text(
+        '[projector]\nkind = "parallel"\nazimuth = 30\nelevation = 20\n'
+        "[render]\nhidden_lines = true\n"
+        '[[object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
+        'families = [{ name = "parameter_lines", n1 = 4, n2 = 6 }]\n'
+    )
+    assert main(["render", str(scene), "-o", str(tmp_path / "raw.svg")]) == 0
+    assert main(["render", str(scene), "-o", str(tmp_path / "clean.svg"), "--plotter"]) == 0
+    raw = (tmp_path / "raw.svg").read_text()
+    clean = (tmp_path / "clean.svg").read_text()
+    assert clean.count("<polyline") < raw.count("<polyline")
+    assert clean.count("inkscape:groupmode") == raw.count("inkscape:groupmode") == 4
