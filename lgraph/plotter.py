@@ -8,9 +8,10 @@ measured on the page (pt, or any length ``"0.1mm"``):
 
 1. **duplicates**: parts of a stroke that lie within ``merge`` of a stroke
    already kept are removed (contours and longer strokes are kept first);
-2. **merging**: strokes of the same layer, family, surface and style whose
-   ends lie within ``merge`` are joined (reversed where needed) into one path;
-   a path whose ends meet is closed exactly;
+2. **merging**: strokes of the same layer, family and style whose ends lie
+   within ``merge`` are joined (reversed where needed) into one path; a path
+   whose ends meet is closed exactly; a path joined from strokes of different
+   surfaces has ``surface`` and ``uv`` None;
 3. **fragments**: paths shorter than ``min_length`` are dropped;
 4. **order** (``sort=True``): per layer, nearest-neighbour tours over the
    paths (from a few extreme starts), reversing them where that helps, each
@@ -367,10 +368,10 @@ def for_plotter(
     ppages = [np.asarray(strokes[k].xy, float)[a:b] * scale + offset for k, a, b in pieces]
     plen = np.array([np.linalg.norm(np.diff(p, axis=0), axis=1).sum() for p in ppages])
 
-    # 2. merge pieces of one layer, family, surface and style
+    # 2. merge pieces of one layer, family and style (a path over two surfaces has none)
     lkeys = layer_keys([strokes[k] for k, _, _ in pieces], mode)
     keys = [
-        (lk, s.visible, s.family, id(s.surface), s.style)
+        (lk, s.visible, s.family, s.style)
         for lk, s in zip(lkeys, (strokes[k] for k, _, _ in pieces))
     ]
     ends = np.array([[p[0], p[-1]] for p in ppages]).reshape(-1, 2)
@@ -419,6 +420,9 @@ def _build(parts: list, flip: bool, strokes: list, *, pages_tol: float, scale: f
         return np.concatenate(arrays)
 
     xy, xyz, uv = cat("xy"), cat("xyz"), cat("uv")
+    surface = s0.surface
+    if any(strokes[k].surface is not surface for k, _, _, _ in parts):
+        surface, uv = None, None  # a path over several surfaces: no one parameter plane
     # drop a vertex repeated where two pieces meet exactly
     same = np.r_[False, (np.abs(np.diff(xy, axis=0)) == 0).all(axis=1)]
     # close a path whose ends meet within the tolerance
@@ -429,7 +433,7 @@ def _build(parts: list, flip: bool, strokes: list, *, pages_tol: float, scale: f
     if closing and np.linalg.norm(np.diff(xy, axis=0), axis=1).sum() * scale > 2 * pages_tol:
         xy, xyz = np.vstack([xy, xy[:1]]), np.vstack([xyz, xyz[:1]])
         uv = np.vstack([uv, uv[:1]]) if uv is not None else None
-    return attrs.evolve(s0, xy=xy, xyz=xyz, uv=uv)
+    return attrs.evolve(s0, xy=xy, xyz=xyz, uv=uv, surface=surface)
 
 
 def _same_layout(drawing: Any, strokes: Any) -> Any:

@@ -149,6 +149,22 @@ def test_strokes_of_different_families_or_styles_are_not_merged() -> None:
     assert len(clean.strokes) == 5
 
 
+def test_a_path_over_two_surfaces_has_no_surface() -> None:
+    a, b = lg.Sphere(1), lg.Sphere(2)
+    uv = np.zeros((2, 2))
+    one = stroke([[10, 50], [30, 50]], family="u1", surface=a, uv=uv)
+    two = stroke([[50, 50], [30, 50]], family="u1", surface=b, uv=uv)
+    same = stroke([[10, 60], [30, 60]], family="u1", surface=a, uv=uv)
+    same2 = stroke([[30, 60], [50, 60]], family="u1", surface=a, uv=uv + 1)
+    clean = page(one, two, same, same2).for_plotter(min_length=0)
+    merged = {s.xy[:, 1][0]: s for s in clean.strokes if s.family == "u1"}
+    assert len(merged) == 2
+    assert merged[50.0].surface is None and merged[50.0].uv is None
+    assert merged[60.0].surface is a
+    np.testing.assert_array_equal(np.abs(merged[60.0].xy[:, 0] - 30), [20, 0, 20])
+    assert merged[60.0].uv.shape == (3, 2)
+
+
 def test_fragments_shorter_than_min_length_are_dropped() -> None:
     tiny = stroke([[50, 50], [50.5, 50]])  # 0.5 pt
     short = stroke([[20, 50], [22, 50]])  # 2 pt
