@@ -168,3 +168,13 @@ def test_travel_no_longer_than_vpype_linemerge_linesort(tmp_path: Path, name: st
         d.for_plotter(merge="0.05mm").pen_up_length() * length_pt("200mm") / d.page_size()[0],
         rel=1e-3,
     )
+
+
+def test_labels_never_start_with_axidraw_command_characters(tmp_path: Path) -> None:
+    strokes = [Stroke(xy=np.eye(2) * (k + 1), xyz=np.zeros((2, 3)), family=name)
+               for k, name in enumerate(["%pause", "!skip", "two words", "%"])]  # fmt: skip
+    labels = [
+        g.get(INK + "label") for g in layers_of(Drawing(strokes=strokes).save(tmp_path / "a.svg"))
+    ]
+    assert labels == ["1 pause", "2 skip", "3 two-words", "4 layer"]
+    assert all(not lab.split(" ", 1)[1].startswith(("%", "!")) for lab in labels)
