@@ -11,7 +11,7 @@ Both sides are measured by vpype itself: the figure is saved as a layered SVG
 * vpype: ``read fig.svg linemerge linesort`` (vpype's defaults: merge tolerance
   0.05 mm, greedy nearest-neighbour sort with path reversal), and the same with
   ``linesort --two-opt``;
-* lgraph: ``drawing.for_plotter(merge="0.05mm")`` saved the same way, then
+* lgraph: ``drawing.for_plotter(merge="0.05mm", width="200mm")`` saved the same way, then
   ``read clean.svg``;
 
 and the pen-up length is the sum over layers of vpype's ``pen_up_length``.
@@ -61,7 +61,7 @@ def main() -> int:
             raw = Path(tmp) / f"{name}.svg"
             drawing.save(raw, width="200mm")
             t = time.perf_counter()
-            clean = drawing.for_plotter(merge="0.05mm")
+            clean = drawing.for_plotter(merge="0.05mm", width="200mm")
             t_lgraph = time.perf_counter() - t
             clean_svg = Path(tmp) / f"{name}-clean.svg"
             clean.save(clean_svg, width="200mm")

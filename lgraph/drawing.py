@@ -438,6 +438,7 @@ class Drawing:
         sort: bool = True,
         *,
         layers: str | None = "family",
+        width: float | str | None = None,
     ) -> Drawing:
         """A copy cleaned for a pen plotter: merged paths, no duplicates or
         fragments, short pen-up travel (see :func:`lgraph.plotter.for_plotter`).
@@ -450,7 +451,7 @@ class Drawing:
         """
         from .plotter import for_plotter
 
-        return for_plotter(self, merge, min_length, sort, layers=layers)
+        return for_plotter(self, merge, min_length, sort, layers=layers, width=width)
 
     def pen_up_length(self, unit: str = "pt", *, layers: str | None = "family") -> float:
         """Pen-up travel on the page between consecutive paths of each layer

@@ -319,6 +319,7 @@ def for_plotter(
     sort: bool = True,
     *,
     layers: str | None = "family",
+    width: float | str | None = None,
 ) -> Any:
     """A copy of ``drawing`` cleaned for a pen plotter (see the module docstring).
 
@@ -335,6 +336,10 @@ def for_plotter(
         Order the paths of each layer for short pen-up travel.
     layers : "family", "surface" or None
         The layers within which paths are sorted (as the SVG backend groups them).
+    width : length, optional
+        The width the drawing will be plotted at (as in ``save("x.svg",
+        width="200mm")``): ``merge`` and ``min_length`` are then lengths on
+        that page.  Default: on the drawing's own page (:meth:`Drawing.page_size`).
 
     Returns
     -------
@@ -344,6 +349,9 @@ def for_plotter(
     """
     tol = plotter_length(merge, "merge")
     shortest = plotter_length(min_length, "min_length")
+    if width is not None:  # lengths on the plotted page -> on the drawing's page
+        shrink = drawing.page_size()[0] / length_pt(width, "for_plotter: width")
+        tol, shortest = tol * shrink, shortest * shrink
     if not isinstance(sort, bool):
         raise ValueError(f"for_plotter: sort must be True or False, got {sort!r}")
     mode = check_layer_mode(layers, "for_plotter")

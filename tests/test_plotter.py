@@ -254,6 +254,16 @@ def test_bad_options_are_refused() -> None:
             d.for_plotter(**kw)
 
 
+def test_tolerances_on_the_plotted_page() -> None:
+    tiny = stroke([[50, 50], [51, 50]])  # 1 pt = 0.353 mm on the drawing's 100 pt page
+    d = page(tiny)
+    assert len(d.for_plotter(min_length="0.3mm").strokes) == 3  # kept
+    assert len(d.for_plotter(min_length="0.3mm", width="20mm").strokes) == 2  # 0.2 mm: dropped
+    assert len(d.for_plotter(min_length="0.3mm", width="200mm").strokes) == 3  # 2 mm: kept
+    with pytest.raises(ValueError, match="for_plotter: width must be a positive length"):
+        d.for_plotter(width="-2mm")
+
+
 def test_nan_breaks_and_empty_drawings() -> None:
     broken = stroke([[10, 10], [20, 10], [np.nan, np.nan], [30, 10], [40, 10]])
     clean = page(broken).for_plotter(min_length=0)

@@ -154,7 +154,7 @@ def test_travel_no_longer_than_vpype_linemerge_linesort(tmp_path: Path, name: st
     spec.loader.exec_module(module)
     d = render_figure(module.build())
     raw = d.save(tmp_path / "raw.svg", width="200mm")
-    clean = d.for_plotter(merge="0.05mm").save(tmp_path / "clean.svg", width="200mm")
+    clean = d.for_plotter(merge="0.05mm", width="200mm").save(tmp_path / "clean.svg", width="200mm")
 
     def travel(doc) -> float:  # noqa: ANN001
         return sum(layer.pen_up_length()[0] for layer in doc.layers.values())
@@ -165,7 +165,9 @@ def test_travel_no_longer_than_vpype_linemerge_linesort(tmp_path: Path, name: st
     assert sum(map(len, ours.layers.values())) <= sum(map(len, theirs.layers.values()))
     # and our own measure agrees with vpype's (px -> pt)
     assert travel(ours) * 72 / 96 == pytest.approx(
-        d.for_plotter(merge="0.05mm").pen_up_length() * length_pt("200mm") / d.page_size()[0],
+        d.for_plotter(merge="0.05mm", width="200mm").pen_up_length()
+        * length_pt("200mm")
+        / d.page_size()[0],
         rel=1e-3,
     )
 
