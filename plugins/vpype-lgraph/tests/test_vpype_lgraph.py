@@ -129,6 +129,20 @@ def test_round_trip_through_vpype_write_and_read(scene: Path, tmp_path: Path) ->
     assert travel(doc) < travel(raw)
 
 
+def test_clean_removes_duplicates_and_travel(scene: Path) -> None:
+    raw = vpype_cli.execute(f"lgraph --no-dashes '{scene}'")
+    clean = vpype_cli.execute(f"lgraph --no-dashes --clean '{scene}'")
+    d = lgraph_drawing(scene, hidden=False)
+    want = d.for_plotter()
+    assert sum(map(len, clean.layers.values())) == len(want.strokes) < len(d.strokes)
+
+    def travel(doc) -> float:  # noqa: ANN001
+        return sum(layer.pen_up_length()[0] for layer in doc.layers.values())
+
+    assert travel(clean) == pytest.approx(want.pen_up_length() * PX_PER_PT)
+    assert travel(clean) < travel(vpype_cli.execute("linemerge linesort", raw))
+
+
 def test_python_api_adds_layers_after_existing_ones(scene: Path) -> None:
     d = lgraph_drawing(scene, hidden=False)
     doc = drawing_to_document(d)

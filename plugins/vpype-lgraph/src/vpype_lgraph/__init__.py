@@ -13,7 +13,8 @@ as lgraph's SVG labels it), ``vp_color`` and ``vp_pen_width`` set.  The page
 is lgraph's page (``[page]`` of the scene file), in vpype's units (CSS pixels,
 1/96 in), y down.  Dashed layers (hidden lines) are split into their dashes,
 since a plotter draws dashes as separate pen-down moves (``--no-dashes``
-keeps them whole).
+keeps them whole).  ``--clean`` runs lgraph's :meth:`Drawing.for_plotter`
+first: it also removes strokes drawn twice, which vpype's ``linemerge`` keeps.
 
 :func:`drawing_to_document` does the conversion for a drawing built in Python.
 
@@ -93,9 +94,15 @@ def drawing_to_document(
     show_default=True,
     help="Split dashed layers (hidden lines) into their dashes.",
 )
+@click.option(
+    "--clean",
+    is_flag=True,
+    help="Clean with lgraph first: remove duplicate strokes (which linemerge keeps), "
+    "merge, drop fragments, sort (Drawing.for_plotter).",
+)
 @vpype_cli.global_processor
 def lgraph(
-    document: vp.Document, scene: str, hidden: bool, layers: str, dashes: bool
+    document: vp.Document, scene: str, hidden: bool, layers: str, dashes: bool, clean: bool
 ) -> vp.Document:
     """Render an lgraph scene file (TOML), one layer per family or surface.
 
@@ -112,6 +119,8 @@ def lgraph(
     if hidden:
         render["hidden_lines"] = True
     drawing = scn.render(projector, **render)
+    if clean:
+        drawing = drawing.for_plotter(layers=layers)
     return drawing_to_document(drawing, layers=layers, dashes=dashes, document=document)
 
 
