@@ -394,9 +394,12 @@ def for_plotter(
             continue
         paths.append((parts, pts, keys[chain[0][0]][0]))
 
-    # 4. order per layer (layers in order of first appearance)
+    # 4. order per layer; layers in the drawing's order (hidden parts first, as
+    # page_strokes yields them), so they keep their numbers and names in the SVG
     ordered: list[tuple[list, bool]] = []
-    layer_names = list(dict.fromkeys(name for _, _, name in paths))
+    present = {name for _, _, name in paths}
+    by_page = sorted(range(len(pieces)), key=lambda i: strokes[pieces[i][0]].visible)
+    layer_names = [n for n in dict.fromkeys(lkeys[i] for i in by_page) if n in present]
     for name in layer_names:
         members = [p for p in paths if p[2] == name]
         if sort:

@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import importlib.util
 import itertools
+import re
 from pathlib import Path
 
+import attrs
 import numpy as np
 import pytest
 
@@ -289,3 +291,20 @@ def test_command_line_plotter_flag(tmp_path) -> None:  # noqa: ANN001
     clean = (tmp_path / "clean.svg").read_text()
     assert clean.count("<polyline") < raw.count("<polyline")
     assert clean.count("inkscape:groupmode") == raw.count("inkscape:groupmode") == 4
+    labels = re.compile(r'inkscape:label="([^"]*)"')
+    assert labels.findall(clean) == labels.findall(raw)  # same layer numbers and names
+
+
+def test_layers_keep_their_numbers_and_names(tmp_path) -> None:  # noqa: ANN001
+    from lgraph.layers import drawing_layers
+
+    d = gallery_drawing("extra_hidden_dashed")
+    styled = [
+        attrs.evolve(s, style=Style(width=1.0)) if i % 3 == 0 and s.visible else s
+        for i, s in enumerate(d.strokes)
+    ]  # two styles per family: layers u1 and u1-2, ...
+    d = attrs.evolve(d, strokes=styled)
+    clean = d.for_plotter()
+    before = [(g.label, g.style) for g in drawing_layers(d)]
+    assert [(g.label, g.style) for g in drawing_layers(clean)] == before
+    assert len(before) > 4
