@@ -38,13 +38,13 @@ def _render(args: argparse.Namespace) -> int:
         print(f"lgraph render: {e}", file=sys.stderr)
         return 2
     drawing = scene.render(projector, **options.get("render", {}))
-    if args.plotter:
-        drawing = drawing.for_plotter()
     out = args.output or str(Path(args.scene).with_suffix(".pdf"))
     save = dict(options.get("save", {}))
     for name in ("width", "height"):  # the command line wins over the scene file
         if getattr(args, name, None) is not None:
             save[name] = args.__dict__[name]
+    if args.plotter:  # tolerances on the page as saved
+        drawing = drawing.for_plotter(width=save.get("width"))
     path = drawing.save(out, **save)
     print(f"wrote {Path(path).resolve()}")
     return 0

@@ -337,9 +337,9 @@ def for_plotter(
     layers : "family", "surface" or None
         The layers within which paths are sorted (as the SVG backend groups them).
     width : length, optional
-        The width the drawing will be plotted at (as in ``save("x.svg",
-        width="200mm")``): ``merge`` and ``min_length`` are then lengths on
-        that page.  Default: on the drawing's own page (:meth:`Drawing.page_size`).
+        The width the drawing will be saved at (``save("x.svg", width="200mm")``,
+        see :meth:`Drawing.sized`): ``merge`` and ``min_length`` are then
+        lengths on that page.  Default: on the drawing's own page.
 
     Returns
     -------
@@ -350,7 +350,8 @@ def for_plotter(
     tol = plotter_length(merge, "merge")
     shortest = plotter_length(min_length, "min_length")
     if width is not None:  # lengths on the plotted page -> on the drawing's page
-        shrink = drawing.page_size()[0] / length_pt(width, "for_plotter: width")
+        length_pt(width, "for_plotter: width")
+        shrink = drawing._layout()[0] / drawing.sized(width=width)._layout()[0]
         tol, shortest = tol * shrink, shortest * shrink
     if not isinstance(sort, bool):
         raise ValueError(f"for_plotter: sort must be True or False, got {sort!r}")

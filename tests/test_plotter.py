@@ -293,6 +293,9 @@ def test_command_line_plotter_flag(tmp_path) -> None:  # noqa: ANN001
     assert clean.count("inkscape:groupmode") == raw.count("inkscape:groupmode") == 4
     labels = re.compile(r'inkscape:label="([^"]*)"')
     assert labels.findall(clean) == labels.findall(raw)  # same layer numbers and names
+    out = tmp_path / "sized.svg"
+    assert main(["render", str(scene), "-o", str(out), "--plotter", "--width", "120mm"]) == 0
+    assert 'width="120mm"' in out.read_text()
 
 
 def test_layers_keep_their_numbers_and_names(tmp_path) -> None:  # noqa: ANN001

@@ -13,6 +13,7 @@ import lgraph as lg
 from lgraph.backends._common import finite_runs
 from lgraph.drawing import Drawing, Page, Stroke, Style
 from lgraph.gallery import render_figure
+from lgraph.layers import drawing_layers
 from lgraph.units import length_pt
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -79,33 +80,26 @@ def test_layers_per_surface_and_styles_split(tmp_path: Path) -> None:
 
 def test_width_in_mm_scales_the_page_not_the_lines(tmp_path: Path) -> None:
     d = two_surfaces()
-    pw, ph = d.page_size()
     root = ET.parse(d.save(tmp_path / "w.svg", width="200mm")).getroot()
-    k = length_pt("200mm") / pw
+    sized = d.sized(width="200mm")  # what save(width=...) draws (lgraph.Drawing.sized)
+    pw, ph = sized.page_size()
+    assert pw == pytest.approx(length_pt("200mm"))
     assert root.get("width") == "200mm"
-    assert float(root.get("height")[:-2]) == pytest.approx(ph * k / length_pt("1mm"), abs=1e-4)
+    assert float(root.get("height")[:-2]) == pytest.approx(ph / length_pt("1mm"), abs=1e-4)
     vb = [float(x) for x in root.get("viewBox").split()]
-    assert vb[:2] == [0, 0] and vb[2] == pytest.approx(pw * k, abs=1e-4)
-    assert vb[3] == pytest.approx(ph * k, abs=1e-4)
-    # the points are the page points scaled by k, y flipped
-    lines = list(root.iter(SVG + "polyline"))
-    got = np.concatenate([points(el) for el in lines])
-    want = np.concatenate([r for g in __import__("lgraph").layers.drawing_layers(d)
-                           for r, _ in g.runs])  # fmt: skip
-    want = want * k * (1, -1) + (0, ph * k)
-    np.testing.assert_allclose(got, want, atol=1e-3)
-    assert {g.get("stroke-width") for g in root.findall(SVG + "g")} == {"0.3", "0.5", "0.8"}
-    # both: the figure fits inside and is centred
-    root = ET.parse(d.save(tmp_path / "b.svg", width="10cm", height="10cm")).getroot()
-    assert (root.get("width"), root.get("height")) == ("100mm", "100mm")
+    assert vb[:2] == [0, 0] and vb[2] == pytest.approx(pw, abs=1e-4)
+    assert vb[3] == pytest.approx(ph, abs=1e-4)
+    # the points are the page points of the sized drawing, y flipped
     got = np.concatenate([points(el) for el in root.iter(SVG + "polyline")])
-    k = length_pt("10cm") / max(pw, ph)
-    lo, hi = got.min(axis=0), got.max(axis=0)
-    margin = d.page.margin * k
-    assert lo[0] == pytest.approx(margin, abs=1e-2) and hi[0] == pytest.approx(
-        length_pt("10cm") - margin, abs=1e-2
-    )
-    assert (lo[1] + hi[1]) / 2 == pytest.approx(length_pt("10cm") / 2, abs=1e-2)
+    want = np.concatenate([r for g in drawing_layers(sized) for r, _ in g.runs])
+    np.testing.assert_allclose(got, want * (1, -1) + (0, ph), atol=1e-3)
+    # and the figure is larger than on the default page, the lines are not wider
+    assert np.ptp(got[:, 0]) > 1.05 * np.ptp(np.concatenate([r for r, _ in d.page_strokes()])[:, 0])
+    assert {g.get("stroke-width") for g in root.findall(SVG + "g")} == {"0.3", "0.5", "0.8"}
+    # both: the figure fits inside (aspect kept)
+    root = ET.parse(d.save(tmp_path / "b.svg", width="10cm", height="10cm")).getroot()
+    w, h = (float(root.get(k)[:-2]) for k in ("width", "height"))
+    assert max(w, h) == pytest.approx(100, abs=1e-3) and min(w, h) <= 100
 
 
 @pytest.mark.parametrize(
@@ -136,7 +130,9 @@ def test_vpype_reads_the_layers_and_the_page_size(tmp_path: Path) -> None:
     assert names == ["1 hidden", "2 curvature", "3 contour", "4 u1", "5 u2"]
     w, h = doc.page_size
     assert w / PX_PER_MM == pytest.approx(200, abs=1e-3)
-    assert h / PX_PER_MM == pytest.approx(200 * d.page_size()[1] / d.page_size()[0], abs=1e-3)
+    assert h / PX_PER_MM == pytest.approx(
+        d.sized(width="200mm").page_size()[1] / length_pt("1mm"), abs=1e-3
+    )
     widths = {k: doc.layers[k].property("vp_pen_width") for k in doc.layers}
     assert widths[1] == pytest.approx(0.3 * 96 / 72, rel=1e-5)  # hidden lines: 0.3 pt
     assert sum(len(layer) for layer in doc.layers.values()) == sum(
@@ -154,7 +150,8 @@ def test_travel_no_longer_than_vpype_linemerge_linesort(tmp_path: Path, name: st
     spec.loader.exec_module(module)
     d = render_figure(module.build())
     raw = d.save(tmp_path / "raw.svg", width="200mm")
-    clean = d.for_plotter(merge="0.05mm", width="200mm").save(tmp_path / "clean.svg", width="200mm")
+    cleaned = d.for_plotter(merge="0.05mm", width="200mm")
+    clean = cleaned.save(tmp_path / "clean.svg", width="200mm")
 
     def travel(doc) -> float:  # noqa: ANN001
         return sum(layer.pen_up_length()[0] for layer in doc.layers.values())
@@ -165,10 +162,8 @@ def test_travel_no_longer_than_vpype_linemerge_linesort(tmp_path: Path, name: st
     assert sum(map(len, ours.layers.values())) <= sum(map(len, theirs.layers.values()))
     # and our own measure agrees with vpype's (px -> pt)
     assert travel(ours) * 72 / 96 == pytest.approx(
-        d.for_plotter(merge="0.05mm", width="200mm").pen_up_length()
-        * length_pt("200mm")
-        / d.page_size()[0],
-        rel=1e-3,
+        cleaned.sized(width="200mm").pen_up_length(),
+        rel=1e-5,  # SVG keeps 3 decimals
     )
 
 
