@@ -110,3 +110,10 @@ FIELD_DUPLICATE_RTOL = 1e-5
 #: the parameter lines are the field's lines when g12 and L12 (lines of
 #: curvature) or L11 and L22 (asymptotic lines) vanish to this, relative
 PARAMETER_LINES_RTOL = 1e-7
+
+#: Pen plotters (lgraph.plotter): an end of a stroke lying within the merge
+#: tolerance of another stroke over at least this many tolerances is trimmed as
+#: a duplicate (a whole stroke lying so is always removed; stretches inside a
+#: stroke never are: they are crossings or tangencies, and removing them would
+#: split the stroke).
+DUPLICATE_MIN_END = 2.0

@@ -43,6 +43,8 @@ def _render(args: argparse.Namespace) -> int:
     for name in ("width", "height"):  # the command line wins over the scene file
         if getattr(args, name, None) is not None:
             save[name] = args.__dict__[name]
+    if args.plotter:  # tolerances on the page as saved
+        drawing = drawing.for_plotter(width=save.get("width"))
     path = drawing.save(out, **save)
     print(f"wrote {Path(path).resolve()}")
     return 0
@@ -78,6 +80,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     r.add_argument("--width", help="figure width, e.g. 8.5cm, 85mm, 3.3in, 240pt")
     r.add_argument("--height", help="figure height (with --width: fit inside, aspect kept)")
+    r.add_argument(
+        "--plotter",
+        action="store_true",
+        help="clean for a pen plotter: merge paths, drop duplicates and fragments, "
+        "sort for short pen-up travel (Drawing.for_plotter)",
+    )
     r.set_defaults(func=_render)
     g = sub.add_parser("gallery", help="build every gallery figure (PDF + PNG) and index.html")
     g.add_argument("outdir", help="output folder (created if missing)")

@@ -430,6 +430,36 @@ class Drawing:
         """Total number of points over all strokes."""
         return int(sum(len(s.xy) for s in self.strokes))
 
+    # -- pen plotters -----------------------------------------------------
+    def for_plotter(
+        self,
+        merge: float | str = "0.1mm",
+        min_length: float | str = "0.3mm",
+        sort: bool = True,
+        *,
+        layers: str | None = "family",
+        width: float | str | None = None,
+    ) -> Drawing:
+        """A copy cleaned for a pen plotter: merged paths, no duplicates or
+        fragments, short pen-up travel (see :func:`lgraph.plotter.for_plotter`).
+
+        >>> import numpy as np
+        >>> xy = np.array([[0.0, 0.0], [1.0, 0.0]])
+        >>> d = Drawing(strokes=[Stroke(xy=xy, xyz=np.zeros((2, 3)))] * 2)
+        >>> len(d.for_plotter().strokes)
+        1
+        """
+        from .plotter import for_plotter
+
+        return for_plotter(self, merge, min_length, sort, layers=layers, width=width)
+
+    def pen_up_length(self, unit: str = "pt", *, layers: str | None = "family") -> float:
+        """Pen-up travel on the page between consecutive paths of each layer
+        (see :func:`lgraph.plotter.pen_up_length`); ``unit``: pt, mm, cm, in."""
+        from .plotter import pen_up_length
+
+        return pen_up_length(self, unit, layers=layers)
+
     # -- output -----------------------------------------------------------
     def save(
         self,

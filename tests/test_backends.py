@@ -224,7 +224,7 @@ def test_nonfinite_points_split_the_stroke(tmp_path: Path) -> None:
     assert b"10000 10000 m\n20000 10000 l\nS" in data
     assert b"30000 10000 m\n40000 10000 l\n50000 10000 l\nS" in data
     write_svg(d, tmp_path / "fig.svg")
-    lines = ET.parse(tmp_path / "fig.svg").getroot().findall(SVG_NS + "polyline")
+    lines = list(ET.parse(tmp_path / "fig.svg").getroot().iter(SVG_NS + "polyline"))
     assert [len(p.get("points").split()) for p in lines] == [2, 3]
     write_png(d, tmp_path / "fig.png", dpi=72)
     img = gray(tmp_path / "fig.png")
@@ -362,9 +362,9 @@ def test_svg_structure(tmp_path: Path) -> None:
         stroke([[10, 10], [20, 20], [30, 10]], style=red, family='a<b&"c'),
         stroke([[0, 0], [1, 1]], visible=False),
     )
-    root = ET.parse(d.save(tmp_path / "fig.svg")).getroot()
+    root = ET.parse(d.save(tmp_path / "fig.svg", layers=None)).getroot()
     assert root.tag == SVG_NS + "svg"
-    assert root.get("width") == "100pt" and root.get("height") == "50pt"
+    assert root.get("width") == "35.2778mm" and root.get("height") == "17.6389mm"
     assert root.get("viewBox") == "0 0 100 50"
     lines = root.findall(SVG_NS + "polyline")
     assert len(lines) == 4
@@ -385,8 +385,8 @@ def test_svg_structure(tmp_path: Path) -> None:
 def test_svg_dasharray_precision_and_background(tmp_path: Path) -> None:
     target = dashed_drawing().save(tmp_path / "fig.svg", precision=1)
     root = ET.parse(target).getroot()
-    lines = root.findall(SVG_NS + "polyline")
-    assert lines[-1].get("stroke-dasharray") == "10 10"
+    lines = list(root.iter(SVG_NS + "polyline"))
+    assert root.findall(SVG_NS + "g")[-1].get("stroke-dasharray") == "10 10"
     assert lines[-1].get("points") == "0.0,40.0 100.0,40.0"
     assert root.find(SVG_NS + "rect") is None  # white background is the paper
     target = drawing(background=(0.0, 0.0, 1.0)).save(tmp_path / "b.svg")
@@ -397,7 +397,7 @@ def test_svg_dasharray_precision_and_background(tmp_path: Path) -> None:
 def test_svg_many_points(tmp_path: Path) -> None:
     t = np.linspace(0, 2 * np.pi, 5001)
     d = drawing(stroke(np.column_stack([50 + 20 * np.cos(t), 25 + 20 * np.sin(t)])))
-    lines = ET.parse(d.save(tmp_path / "fig.svg")).getroot().findall(SVG_NS + "polyline")
+    lines = list(ET.parse(d.save(tmp_path / "fig.svg")).getroot().iter(SVG_NS + "polyline"))
     pts = np.array([p.split(",") for p in lines[-1].get("points").split()], dtype=float)
     assert pts.shape == (5001, 2)
     assert np.allclose(pts[:, 0], 50 + 20 * np.cos(t), atol=6e-4)

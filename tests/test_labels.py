@@ -275,8 +275,12 @@ def test_svg_has_one_group_per_label_and_pdf_fills_glyphs(tmp_path):
     scene.add(lg.Label("N", at=(0, 0, -1.5)))
     d = scene.render(lg.ParallelProjector(direction=(1, 0.3, 0.2)))
     root = ET.parse(d.save(tmp_path / "a.svg")).getroot()
-    groups = root.findall("{http://www.w3.org/2000/svg}g")
+    groups = [g for g in root.iter("{http://www.w3.org/2000/svg}g") if g.get("class") == "label"]
     assert [g.get("data-text") for g in groups] == ["$x_1$", "N"]
+    # all in one layer of their own, after the strokes' layers (plotter tools)
+    layers = root.findall("{http://www.w3.org/2000/svg}g")
+    assert layers[-1].get("{http://www.inkscape.org/namespaces/inkscape}label") == "4 labels"
+    assert list(layers[-1]) == groups
     assert all(g.find("{http://www.w3.org/2000/svg}path") is not None for g in groups)
     _, stream = _pdf_page(d.save(tmp_path / "a.pdf", compress=False))
     assert stream.count(b"\nf") == 2 and b" c\n" in stream

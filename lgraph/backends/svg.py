@@ -1,24 +1,32 @@
 """SVG backend: plain XML, one ``<polyline>`` per stroke, no dependencies.
 
-User units are points (``viewBox`` equals the page size in pt), y points
-down as SVG wants.  Each polyline carries ``data-family`` and
-``data-visible`` attributes; renderers and pen-plotter tools (vpype) ignore
-unknown attributes.
+User units are points (the ``viewBox`` is the page in pt), y points down as
+SVG wants; the ``width`` and ``height`` attributes are in mm (``save("x.svg",
+width="200mm")`` gives the page that width, see :meth:`Drawing.sized`; line
+widths stay in pt).  By default the
+polylines are grouped in Inkscape layers, ``<g inkscape:groupmode="layer"
+inkscape:label="1 contour" id="layer1">``, one per family (hidden parts in
+their own layer) or per surface (:mod:`lgraph.layers`), each carrying the one
+stroke colour and width of its layer: pen-plotter tools (vpype, AxiDraw) read
+them as one pen each.  Each polyline carries ``data-family`` and
+``data-visible`` attributes, which renderers and plotter tools ignore.
 
 >>> import numpy as np, tempfile, os
 >>> import xml.etree.ElementTree as ET
 >>> from lgraph.drawing import Drawing, Page, Stroke
->>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)))
->>> d = Drawing(strokes=(s,), page=Page(margin=0, extent=100))
+>>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)), family="u1")
+>>> d = Drawing(strokes=(s,), page=Page(margin=0, extent=72))
 >>> with tempfile.TemporaryDirectory() as tmp:
 ...     path = os.path.join(tmp, "a.svg")
-...     write_svg(d, path, precision=1)
+...     write_svg(d.sized(width="50.8mm"), path, precision=1)
 ...     root = ET.parse(path).getroot()
->>> root.get("viewBox")
-'0 0 100 50'
->>> line = root.find("{http://www.w3.org/2000/svg}polyline")
->>> line.get("points"), line.get("stroke-width"), line.get("data-family")
-('0.0,50.0 100.0,0.0', '0.5', 'curve')
+>>> root.get("width"), root.get("height"), root.get("viewBox")
+('50.8mm', '25.4mm', '0 0 144 72')
+>>> layer = root.find("{http://www.w3.org/2000/svg}g")
+>>> layer.get("{http://www.inkscape.org/namespaces/inkscape}label"), layer.get("stroke-width")
+('1 u1', '0.5')
+>>> layer.find("{http://www.w3.org/2000/svg}polyline").get("points")
+'0.0,72.0 144.0,0.0'
 """
 
 from __future__ import annotations
@@ -27,6 +35,10 @@ import os
 from typing import Any
 from xml.sax.saxutils import quoteattr
 
+import numpy as np
+
+from ..layers import check_layer_mode, drawing_layers
+from ..units import to_unit
 from ._common import (
     background_rgb,
     check_options,
@@ -37,9 +49,31 @@ from ._common import (
     page_runs,
 )
 
-__all__ = ["write_svg"]
+__all__ = ["write_svg", "INKSCAPE_NS"]
+
+#: The Inkscape namespace of the layer attributes.
+INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
 
 _WHITE = (1.0, 1.0, 1.0)
+
+
+def _polyline(pts: np.ndarray, stroke: Any, precision: int, style_attrs: str) -> str:
+    coords = format_points(pts, "{},{} ", precision)[:-1]
+    return (
+        f"<polyline{style_attrs} data-family={quoteattr(str(stroke.family))} "
+        f'data-visible="{"true" if stroke.visible else "false"}" points="{coords}"/>\n'
+    )
+
+
+def _style_attrs(style: Any) -> str:
+    dash = ""
+    if style.dash:
+        dash = ' stroke-dasharray="' + " ".join(fmt_num(x) for x in style.dash) + '"'
+    return (
+        f' fill="none" stroke="{hex_color(style.color)}" '
+        f'stroke-width="{fmt_num(style.width)}" stroke-linecap="round" '
+        f'stroke-linejoin="round"{dash}'
+    )
 
 
 def write_svg(
@@ -47,6 +81,7 @@ def write_svg(
     path: str | os.PathLike[str],
     *,
     precision: int = 3,
+    layers: str | None = "family",
     **options: Any,
 ) -> None:
     """Write ``drawing`` as an SVG file.
@@ -59,51 +94,66 @@ def write_svg(
         File to write (whatever its suffix).
     precision : int, default 3
         Decimals of the point coordinates (in pt).
-
+    layers : "family" (default), "surface" or None
+        One Inkscape layer per family (hidden parts in a layer ``hidden``), per
+        surface, or no groups at all (every polyline styled on its own).
     Notes
     -----
-    Every stroke becomes one ``<polyline fill="none">`` with its colour,
-    width, round caps/joins and, when dashed, ``stroke-dasharray``; a stroke
-    containing non-finite points (breaks) becomes one polyline per finite
-    run.  A background other than white (the paper) is a full-page ``<rect>``
-    first; None and white add nothing, so plotter tools see only the strokes.
+    Every stroke becomes one ``<polyline>`` (inside its layer's ``<g>``, which
+    holds the colour, width, round caps/joins and, when dashed,
+    ``stroke-dasharray``); a stroke containing non-finite points (breaks)
+    becomes one polyline per finite run.  A background other than white (the
+    paper) is a full-page ``<rect>`` first; None and white add nothing, so
+    plotter tools see only the strokes.  Labels (glyph outlines) come last, in
+    a layer ``labels`` of their own when there are layers.
 
     Raises
     ------
     TypeError
         For an option this writer does not know.
     ValueError
-        For a bad ``precision``.
+        For a bad ``precision`` or ``layers`` (before anything is written).
     """
-    check_options("write_svg", options, ("precision",))
+    check_options("write_svg", options, ("precision", "layers"))
     precision = check_precision("write_svg", precision)
-
+    mode = check_layer_mode(layers, "write_svg")
     pw, ph = drawing.page_size()
     w, h = fmt_num(pw), fmt_num(ph)
-    with open(path, "w", encoding="utf-8", newline="\n") as f:
-        f.write('<?xml version="1.0" encoding="UTF-8"?>\n')
-        f.write(
-            f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" '
-            f'width="{w}pt" height="{h}pt" viewBox="0 0 {w} {h}">\n'
+    out = ['<?xml version="1.0" encoding="UTF-8"?>\n']
+    out.append(
+        f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="{INKSCAPE_NS}" '
+        f'version="1.1" width="{fmt_num(to_unit(pw, "mm"))}mm" '
+        f'height="{fmt_num(to_unit(ph, "mm"))}mm" viewBox="0 0 {w} {h}">\n'
+    )
+    bg = background_rgb(drawing)
+    if bg is not None and bg != _WHITE:
+        out.append(f'<rect x="0" y="0" width="{w}" height="{h}" fill="{hex_color(bg)}"/>\n')
+    # page points (y up) to SVG user units (y down)
+    a, b = np.array([1.0, -1.0]), np.array([0.0, ph])
+    if mode is None:
+        for pts, s in page_runs(drawing):
+            out.append(_polyline(pts * a + b, s, precision, _style_attrs(s.style)))
+    groups = drawing_layers(drawing, mode) if mode else []
+    for layer in groups:
+        out.append(
+            f'<g inkscape:groupmode="layer" inkscape:label={quoteattr(layer.label)} '
+            f'id="layer{layer.number}"{_style_attrs(layer.style)}>\n'
         )
-        bg = background_rgb(drawing)
-        if bg is not None and bg != _WHITE:
-            f.write(f'<rect x="0" y="0" width="{w}" height="{h}" fill="{hex_color(bg)}"/>\n')
-        for pts, stroke in page_runs(drawing):
-            style = stroke.style
-            flipped = pts * (1.0, -1.0) + (0.0, ph)
-            coords = format_points(flipped, "{},{} ", precision)[:-1]
-            dash = ""
-            if style.dash:
-                dash = ' stroke-dasharray="' + " ".join(fmt_num(x) for x in style.dash) + '"'
-            f.write(
-                f'<polyline fill="none" stroke="{hex_color(style.color)}" '
-                f'stroke-width="{fmt_num(style.width)}" stroke-linecap="round" '
-                f'stroke-linejoin="round"{dash} data-family={quoteattr(str(stroke.family))} '
-                f'data-visible="{"true" if stroke.visible else "false"}" points="{coords}"/>\n'
-            )
-        if getattr(drawing, "labels", ()):
-            from ._labels import svg_labels
+        out.extend(_polyline(pts * a + b, s, precision, "") for pts, s in layer.runs)
+        out.append("</g>\n")
+    if getattr(drawing, "labels", ()):
+        from ._labels import svg_labels
 
-            f.writelines(svg_labels(drawing, ph, precision))
-        f.write("</svg>\n")
+        labels = svg_labels(drawing, ph, precision)
+        if mode is not None:  # one more layer, so plotter tools see one group for them all
+            number = len(groups) + 1
+            labels = [
+                f'<g inkscape:groupmode="layer" inkscape:label="{number} labels" '
+                f'id="layer{number}">\n',
+                *labels,
+                "</g>\n",
+            ]
+        out.extend(labels)
+    out.append("</svg>\n")
+    with open(path, "w", encoding="utf-8", newline="\n") as f:
+        f.write("".join(out))

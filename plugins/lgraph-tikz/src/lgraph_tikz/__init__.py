@@ -1,31 +1,41 @@
-r"""lgraph-tikz: an example lgraph backend plugin writing TikZ/PGF for LaTeX.
+r"""lgraph-tikz: an lgraph backend plugin writing TikZ/PGF for LaTeX.
 
 Registered through the entry point group ``lgraph.backends`` (see
 ``pyproject.toml``), so after ``pip install lgraph-tikz``::
 
-    drawing.save("figure.tex")                     # \input{figure.tex} in a document
-    drawing.save("figure.tex", standalone=True)    # a complete standalone document
+    drawing.save("figure.tex")                       # \input{figure.tex} in a document
+    drawing.save("figure.tex", width="8.5cm")        # scaled to 8.5 cm wide
+    drawing.save("figure.tex", standalone=True)      # a complete document of its own
 
-Coordinates are in pt (``x=1pt, y=1pt``), so the picture has the page size
-lgraph computed; every stroke becomes one ``\draw`` with its colour, width
-and dash pattern.  Every label becomes a ``\node`` holding its raw text
-(``$...$`` is typeset by TeX) with no font set, so the document's fonts
-apply; its anchor is lgraph's anchor (``"sw"`` -> ``south west``).
+or ``lgraph render fig.toml -o fig.tex``.  Coordinates are in cm.  Every
+layer of the drawing (:mod:`lgraph.layers`: one per family, hidden parts in
+their own) is a named TikZ style, ``lgraph/contour``, ``lgraph/hidden``,
+``lgraph/u1``, ...; the file declares each one only if the document has not
+(and only inside the picture), so a document restyles all its figures from the
+preamble::
+
+    \tikzset{lgraph/hidden/.style={draw=gray!60, line width=0.2pt, densely dotted}}
+
+Labels (``drawing.labels``) become ``\node[anchor=...]`` with their raw TeX,
+set in the document's fonts, styled ``lgraph/label`` (``lgraph/hidden-label``).  Line
+widths and dashes are in PostScript points (``bp``) and never scaled.
 
 >>> import numpy as np, tempfile, os
 >>> from lgraph import Drawing, Page, Stroke
->>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)))
->>> d = Drawing(strokes=(s,), page=Page(margin=0, extent=100))
+>>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)), family="u1")
+>>> d = Drawing(strokes=(s,), page=Page(margin=0, extent=72))
 >>> with tempfile.TemporaryDirectory() as tmp:
-...     write_tikz(d, os.path.join(tmp, "a.tex"), precision=1)
+...     write_tikz(d, os.path.join(tmp, "a.tex"), width="5.08cm")
 ...     text = open(os.path.join(tmp, "a.tex")).read()
 >>> print(text, end="")
-% lgraph figure, 100 x 50 pt
-\begin{tikzpicture}[x=1pt, y=1pt, line cap=round, line join=round]
-\definecolor{lgc0}{rgb}{0,0,0}
-\useasboundingbox (0,0) rectangle (100,50);
-\draw[color=lgc0, line width=0.5pt] (0.0,0.0) -- (100.0,50.0);
-\end{tikzpicture}
+% lgraph figure, 5.08 x 2.54 cm; restyle with \tikzset{lgraph/<layer>/.style={...}}
+% layers: u1
+\providecommand\lgraphstyle[2]{\pgfkeysifdefined{/tikz/lgraph/#1/.@cmd}{}{\tikzset{lgraph/#1/.style={#2}}}}%
+\begin{tikzpicture}[x=1cm, y=1cm, line cap=round, line join=round]
+\lgraphstyle{u1}{draw={rgb,255:red,0;green,0;blue,0}, line width=0.5bp}
+\useasboundingbox (0,0) rectangle (5.08,2.54);
+\draw[lgraph/u1] (0.000,0.000) -- (5.080,2.540);
+\end{tikzpicture}%
 """
 
 from __future__ import annotations
@@ -35,8 +45,26 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["write_tikz"]
-__version__ = "0.1.0"
+from lgraph.layers import drawing_layers
+from lgraph.units import UNITS, length_pt
+
+__all__ = ["write_tikz", "ANCHORS"]
+__version__ = "0.2.0"
+
+_CM = UNITS["cm"]  # pt per cm
+
+#: lgraph label anchors -> TikZ anchors
+ANCHORS = {
+    "center": "center",
+    "n": "north",
+    "s": "south",
+    "e": "east",
+    "w": "west",
+    "ne": "north east",
+    "nw": "north west",
+    "se": "south east",
+    "sw": "south west",
+}
 
 
 def _num(x: float) -> str:
@@ -44,44 +72,57 @@ def _num(x: float) -> str:
     return "0" if s in ("", "-0") else s
 
 
-def _finite_runs(points: np.ndarray) -> list[np.ndarray]:
-    ok = np.isfinite(points).all(axis=1)
-    edges = np.diff(np.concatenate([[False], ok, [False]]).astype(np.int8))
-    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-    return [points[a:b] for a, b in zip(starts, stops) if b - a >= 2]
+def _style(style: Any) -> str:
+    r, g, b = (min(255, max(0, round(c * 255))) for c in style.color)
+    opts = [f"draw={{rgb,255:red,{r};green,{g};blue,{b}}}", f"line width={_num(style.width)}bp"]
+    if style.dash:
+        pattern = " ".join(
+            f"{'on' if k % 2 == 0 else 'off'} {_num(x)}bp" for k, x in enumerate(style.dash)
+        )
+        opts.append(f"dash pattern={pattern}")
+    return ", ".join(opts)
 
 
-_ANCHORS = {
-    "center": "center",
-    "n": "north",
-    "ne": "north east",
-    "e": "east",
-    "se": "south east",
-    "s": "south",
-    "sw": "south west",
-    "w": "west",
-    "nw": "north west",
-}
+def _page_document(width_bp: float, height_bp: float) -> str:
+    """A LaTeX preamble whose page is exactly the picture (only latex-base and tikz needed)."""
+    return (
+        "\\documentclass{article}\n\\usepackage{tikz}\n\\pagestyle{empty}\n"
+        f"\\setlength{{\\paperwidth}}{{{_num(width_bp)}bp}}"
+        f"\\setlength{{\\paperheight}}{{{_num(height_bp)}bp}}\n"
+        "\\ifdefined\\pdfpagewidth\\setlength{\\pdfpagewidth}{\\paperwidth}"
+        "\\setlength{\\pdfpageheight}{\\paperheight}\\fi\n"
+        "\\ifdefined\\pagewidth\\setlength{\\pagewidth}{\\paperwidth}"
+        "\\setlength{\\pageheight}{\\paperheight}\\fi\n"
+        "\\setlength{\\hoffset}{-1in}\\setlength{\\voffset}{-1in}"
+        "\\setlength{\\oddsidemargin}{0pt}\\setlength{\\evensidemargin}{0pt}\n"
+        "\\setlength{\\topmargin}{0pt}\\setlength{\\headheight}{0pt}"
+        "\\setlength{\\headsep}{0pt}\\setlength{\\footskip}{0pt}\\setlength{\\topskip}{0pt}\n"
+        "\\setlength{\\textwidth}{\\paperwidth}\\setlength{\\textheight}{2\\paperheight}"
+        "\\setlength{\\parindent}{0pt}\n"
+        "\\begin{document}%\n"
+    )
 
 
-def _label_nodes(drawing: Any, colours: dict[tuple[float, ...], str]) -> list[str]:
-    r"""One ``\node`` per label of ``drawing`` (none for an older lgraph).
-
-    >>> import lgraph as lg
-    >>> scene = lg.Scene()
-    >>> _ = scene.add(lg.Label("$\\kappa_1$", at=(0, 0, 0), anchor="sw"))
-    >>> d = scene.render(lg.ParallelProjector(direction=(0, 0, 1)))
-    >>> _label_nodes(d, {})
-    ['\\node[anchor=south west, text=lgc0] at (18,18) {$\\kappa_1$};\n']
-    """
+def _labels(drawing: Any, fmt: str) -> list[str]:
+    """One ``\\node`` per label of ``drawing`` (none for a drawing without labels):
+    its raw TeX at the anchor point of its box (offset applied), in its colour,
+    then the style ``lgraph/label`` (``lgraph/hidden-label`` for hidden ones),
+    so a document can restyle them."""
     labels = getattr(drawing, "labels", ())
     if not labels:
         return []
     out = []
-    for (x, y), lab in zip(drawing.label_positions().tolist(), labels):
-        name = colours.setdefault(tuple(float(c) for c in lab.style.color), f"lgc{len(colours)}")
-        opts = f"anchor={_ANCHORS[lab.anchor]}, text={name}"
-        out.append(f"\\node[{opts}] at ({_num(x)},{_num(y)}) {{{lab.text}}};\n")
+    for xy, lab in zip(np.asarray(drawing.label_positions(), float), labels):
+        if not np.isfinite(xy).all():
+            continue
+        anchor = ANCHORS.get(str(lab.anchor).lower(), "center")
+        r, g, b = (min(255, max(0, round(c * 255))) for c in lab.style.color)
+        at = fmt % tuple((xy / _CM).tolist())
+        style = "lgraph/label" if lab.visible else "lgraph/hidden-label"
+        out.append(
+            f"\\node[anchor={anchor}, text={{rgb,255:red,{r};green,{g};blue,{b}}}, {style}] "
+            f"at {at} {{{lab.text}}};\n"
+        )
     return out
 
 
@@ -89,55 +130,75 @@ def write_tikz(
     drawing: Any,
     path: str | os.PathLike[str],
     *,
-    precision: int = 2,
+    precision: int = 3,
     standalone: bool = False,
+    width: float | str | None = None,
+    layers: str = "family",
 ) -> None:
-    r"""Write ``drawing`` as a ``tikzpicture``.
+    r"""Write ``drawing`` as a ``tikzpicture`` (see the module docstring).
 
     Parameters
     ----------
     drawing : lgraph.Drawing
-        The display list (``page_size()`` and ``page_strokes()`` are used).
+        The display list.
     path : path-like
         File to write.
-    precision : int, default 2
-        Decimals of the coordinates in pt (0 to 6).
+    precision : int, default 3
+        Decimals of the coordinates in cm (0 to 6; 3 is 0.01 mm).
     standalone : bool, default False
-        Wrap the picture in a ``standalone`` document that compiles on its own.
+        Write a complete LaTeX document whose page is exactly the picture
+        (it needs only LaTeX's base classes and TikZ).
+    width : length, optional
+        The picture's width (``"8.5cm"``, ``"3in"``, ``"80mm"`` or pt), as
+        ``Drawing.save(width=...)`` gives it (which handles ``width`` and
+        ``height`` before calling any writer); default: the page size lgraph
+        computed.  Line widths and labels are not scaled.
+    layers : "family" (default) or "surface"
+        What the named styles are: one per family of curves or per surface
+        (hidden parts always ``lgraph/hidden``).
 
     Raises
     ------
     ValueError
-        For a bad ``precision``.
+        For a bad option, before anything is written.
     """
     if isinstance(precision, bool) or not isinstance(precision, int) or not 0 <= precision <= 6:
         raise ValueError(f"write_tikz: precision must be an integer from 0 to 6, got {precision!r}")
-    w, h = drawing.page_size()
-    colours: dict[tuple[float, ...], str] = {}
-    body: list[str] = []
+    if not isinstance(standalone, bool):
+        raise ValueError(f"write_tikz: standalone must be True or False, got {standalone!r}")
+    if layers not in ("family", "surface"):
+        raise ValueError(f"write_tikz: layers must be 'family' or 'surface', got {layers!r}")
+    if width is not None:  # as Drawing.save(width=...): the page gets that width
+        length_pt(width, "write_tikz: width")
+        drawing = drawing.sized(width=width)
+    pw, ph = drawing.page_size()
+    groups = drawing_layers(drawing, layers)
     fmt = f"(%.{precision}f,%.{precision}f)"
-    for pts, stroke in drawing.page_strokes():
-        style = stroke.style
-        rgb = tuple(float(c) for c in style.color)
-        name = colours.setdefault(rgb, f"lgc{len(colours)}")
-        opts = [f"color={name}", f"line width={_num(style.width)}pt"]
-        if style.dash:
-            pattern = " ".join(
-                f"{'on' if k % 2 == 0 else 'off'} {_num(x)}pt" for k, x in enumerate(style.dash)
-            )
-            opts.append(f"dash pattern={pattern}")
-        for run in _finite_runs(np.asarray(pts, float)):
-            coords = " -- ".join([fmt] * len(run)) % tuple(run.ravel().tolist())
-            body.append(f"\\draw[{', '.join(opts)}] {coords};\n")
-    body.extend(_label_nodes(drawing, colours))
-    head = [f"% lgraph figure, {_num(w)} x {_num(h)} pt\n"]
+    w_cm, h_cm = pw / _CM, ph / _CM
+    head = [
+        f"% lgraph figure, {_num(w_cm)} x {_num(h_cm)} cm; "
+        "restyle with \\tikzset{lgraph/<layer>/.style={...}}\n",
+        f"% layers: {', '.join(g.name for g in groups)}\n",
+    ]
     if standalone:
-        head.append("\\documentclass{standalone}\n\\usepackage{tikz}\n\\begin{document}\n")
-    head.append("\\begin{tikzpicture}[x=1pt, y=1pt, line cap=round, line join=round]\n")
-    for rgb, name in colours.items():
-        head.append(f"\\definecolor{{{name}}}{{rgb}}{{{','.join(_num(c) for c in rgb)}}}\n")
-    head.append(f"\\useasboundingbox (0,0) rectangle ({_num(w)},{_num(h)});\n")
-    tail = ["\\end{tikzpicture}\n"]
+        head.append(_page_document(pw, ph))
+    head.append(
+        "\\providecommand\\lgraphstyle[2]{\\pgfkeysifdefined{/tikz/lgraph/#1/.@cmd}{}"
+        "{\\tikzset{lgraph/#1/.style={#2}}}}%\n"
+    )
+    head.append("\\begin{tikzpicture}[x=1cm, y=1cm, line cap=round, line join=round]\n")
+    head.extend(f"\\lgraphstyle{{{g.name}}}{{{_style(g.style)}}}\n" for g in groups)
+    if getattr(drawing, "labels", ()):
+        head.append("\\lgraphstyle{label}{}\n\\lgraphstyle{hidden-label}{}\n")
+    head.append(f"\\useasboundingbox (0,0) rectangle ({_num(w_cm)},{_num(h_cm)});\n")
+    body = []
+    for g in groups:
+        for pts, _ in g.runs:
+            run = np.asarray(pts, float) / _CM
+            coords = " -- ".join([fmt] * len(run)) % tuple(run.ravel().tolist())
+            body.append(f"\\draw[lgraph/{g.name}] {coords};\n")
+    body.extend(_labels(drawing, fmt))
+    tail = ["\\end{tikzpicture}%\n"]
     if standalone:
         tail.append("\\end{document}\n")
     with open(path, "w", encoding="utf-8", newline="\n") as f:
