@@ -12,8 +12,9 @@ from typing import Any
 
 import numpy as np
 
+from ._seeds import _crossing, _grid, _spread
 from .curves import CurveBatch
-from .fieldlines import FieldLines, _spread, trace
+from .fieldlines import FieldLines, trace
 
 __all__ = ["even_batches"]
 
@@ -117,8 +118,6 @@ def even_batches(
     through its seed, and pieces shorter than ``dsep`` are dropped.
     """
     from scipy.spatial import cKDTree
-
-    from .fieldlines import _crossing, _grid
 
     size = surface.size
     out = []

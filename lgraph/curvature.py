@@ -14,12 +14,13 @@ from typing import Any
 
 import numpy as np
 
+from ._tolerance import ASYMPTOTIC_RTOL, FIELD_RTOL, PARABOLIC_STOP, UMBILIC_STOP
+
 __all__ = [
     "fundamental_forms",
     "principal_curvatures",
     "principal_directions",
     "curvature_equation_angle",
-    "numeric_lines_of_curvature",
     "principal_field",
     "asymptotic_field",
 ]
@@ -201,26 +202,8 @@ def asymptotic_field(surface: Any, uv: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return D, strength, np.stack([g11, g12, g22], axis=1)
 
 
-def numeric_lines_of_curvature(
-    surface: Any, n1: int, n2: int, spacing: str = "complete"
-) -> list:
-    """Lines of curvature of any surface, integrated from the principal
-    direction field (:mod:`lgraph.fieldlines`).
-
-    ``n1`` lines of the family that runs like the ``u1 = const`` lines at the
-    centre of the domain, ``n2`` of the other.  By default every line is
-    complete: it runs until the patch boundary, a pole, an umbilic, or until it
-    closes.  ``spacing="even"`` trims lines where they come close to another
-    (evenly spaced streamlines).  Where the parameter lines are lines of
-    curvature (``g12 = L12 = 0``, the paper's Proposition 4.1) they are drawn.
-
-    >>> import lgraph as lg
-    >>> b = numeric_lines_of_curvature(lg.Torus(3, 1), 2, 0)
-    >>> bool(b[0].closed.all())
-    True
-    """
-    from .fieldlines import field_line_batches
-
-    return field_line_batches(
-        surface, principal_field, n1, n2, family="curvature", spacing=spacing
-    )
+# how lines of each field end and how tightly they are integrated (lgraph.fieldlines)
+principal_field.stop = UMBILIC_STOP  # type: ignore[attr-defined]
+principal_field.rtol = FIELD_RTOL  # type: ignore[attr-defined]
+asymptotic_field.stop = PARABOLIC_STOP  # type: ignore[attr-defined]
+asymptotic_field.rtol = ASYMPTOTIC_RTOL  # type: ignore[attr-defined]

@@ -77,7 +77,7 @@ class AsymptoticLines(Family):
                 attrs.evolve(b, family="asymptotic", curve_family=None)
                 for b in closed_form(self.n1, self.n2)
             ]
-        from .fieldlines import field_line_batches
+        from .field_families import field_line_batches
 
         return field_line_batches(
             surface, asymptotic_field, self.n1, self.n2, family="asymptotic", spacing=self.spacing

@@ -17,7 +17,8 @@ from hypothesis import strategies as st
 
 import lgraph as lg
 from lgraph.curvature import asymptotic_field, principal_field
-from lgraph.fieldlines import field_line_batches, trace
+from lgraph.field_families import field_line_batches
+from lgraph.fieldlines import trace
 
 
 def revolution(rho, z, u_range, poles):

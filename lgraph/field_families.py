@@ -1,0 +1,290 @@
+"""Which lines a numeric line family draws (:func:`field_line_batches`).
+
+* Where the parameter lines are the field's lines (``g12 = L12 = 0`` for lines
+  of curvature, the paper's Proposition 4.1; ``L11 = L22 = 0`` for asymptotic
+  lines) the parameter lines are drawn: exact.
+* Otherwise lines are complete by default: candidates are traced together
+  (:func:`lgraph.fieldlines.trace`) through seeds spread along a transversal
+  line through the middle of the patch and over a coarse grid, and ``n`` are
+  picked to cover the patch as evenly as they allow, none twice.
+  ``spacing="even"`` instead trims lines where they come closer than half
+  the spacing to another (evenly spaced streamlines, :mod:`lgraph._even_spacing`).
+* Lines of curvature end at umbilics (:func:`umbilics`).
+
+Derivation: ``docs/mathematics.rst``, "Numeric line families".
+
+>>> import lgraph as lg
+>>> from lgraph.curvature import principal_field
+>>> batches = field_line_batches(lg.MonkeySaddle(), principal_field, 3, 3)
+>>> sum(len(b) for b in batches)
+6
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ._seeds import _center_seed, _crossing, _grid, _spread, _stable
+from ._tolerance import FIELD_DUPLICATE_RTOL, PARAMETER_LINES_RTOL
+from .curvature import _frame, asymptotic_field, principal_field
+from .curves import CurveBatch
+from .families import SPACINGS, parameter_line_batches
+from .fieldlines import FieldLines, _rel, trace
+
+__all__ = ["field_line_batches", "numeric_lines_of_curvature", "umbilics"]
+
+
+def _parameter_lines_are_field_lines(surface: Any, field: Any) -> bool:
+    """Whether the parameter lines are the field's lines, checked on a grid:
+    ``g12 = L12 = 0`` (lines of curvature, the paper's Proposition 4.1) or
+    ``L11 = L22 = 0`` (asymptotic lines)."""
+    d = surface.domain
+    f = (np.arange(24) + 0.5) / 24
+    g = np.stack(np.meshgrid(d.u1[0] + d.span(0) * f, d.u2[0] + d.span(1) * f,
+                             indexing="ij"), -1).reshape(-1, 2)  # fmt: skip
+    _x1, _x2, (g11, g12, g22), (L11, L12, L22) = _frame(surface, g)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        scale = np.sqrt(g11 * g22)
+        kappa = (np.abs(L11) / g11 + np.abs(L22) / g22 + 2 * np.abs(L12) / scale).max()
+        if field is asymptotic_field:
+            small = (np.abs(L11) / g11 + np.abs(L22) / g22) / kappa
+            return bool(np.all(small <= PARAMETER_LINES_RTOL)) and bool(kappa > 0)
+        small = np.maximum(np.abs(g12) / scale, np.abs(L12) / scale / kappa)
+    return bool(np.all(small <= PARAMETER_LINES_RTOL))
+
+
+def _umbilic_residual(surface: Any, uv: np.ndarray, kappa: float) -> np.ndarray:
+    """``(A, B, C)`` of equation (3.3) (``A du1^2 + B du1 du2 + C du2^2 = 0``),
+    scaled: all three vanish exactly at umbilics (flat ones included)."""
+    _x1, _x2, (g11, g12, g22), (L11, L12, L22) = _frame(surface, uv)
+    scale = (g11 * g22 * kappa)[:, None]
+    return np.stack([L11 * g12 - L12 * g11, L11 * g22 - L22 * g11, L12 * g22 - L22 * g12],
+                    axis=1) / scale  # fmt: skip
+
+
+def umbilics(surface: Any, n: int = 24) -> np.ndarray:
+    """Parameters ``(k, 2)`` of the umbilics of the drawn patch (flat ones
+    included): local minima of the residual of (3.3) on an ``n x n`` grid,
+    refined by Gauss-Newton steps (finite-difference Jacobian), kept where
+    the residual vanishes to 1e-9.
+
+    >>> import lgraph as lg
+    >>> umbilics(lg.MonkeySaddle()).round(9).tolist()
+    [[0.0, 0.0]]
+    """
+    from scipy.ndimage import minimum_filter
+
+    d = surface.domain
+    span = np.array([d.span(0), d.span(1)])
+    lo = np.array([d.u1[0], d.u2[0]])
+    axes = [lo[i] + span[i] * (np.arange(n) + 0.5) / n for i in (0, 1)]
+    G = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 2)
+    _x1, _x2, (g11, _g12, g22), (L11, L12, L22) = _frame(surface, G)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        k = np.abs(L11) / g11 + np.abs(L22) / g22 + 2 * np.abs(L12) / np.sqrt(g11 * g22)
+    kappa = float(np.nanmax(k)) if np.isfinite(k).any() else 0.0
+    if not kappa > 0:
+        return np.empty((0, 2))
+    r = np.linalg.norm(_umbilic_residual(surface, G, kappa), axis=1)
+    r = np.where(np.isfinite(r), r, np.inf).reshape(n, n)
+    mode = ["wrap" if p else "nearest" for p in d.periodic]
+    low = np.flatnonzero(((r == minimum_filter(r, size=3, mode=mode)) & (r < 0.5)).ravel())
+    u = G[low[np.argsort(r.ravel()[low])][:64]]
+    h = 1e-6 * span
+    for _ in range(12):  # Gauss-Newton on the three residuals
+        f = _umbilic_residual(surface, d.wrap(u, clip=False), kappa)
+        J = np.stack([(_umbilic_residual(surface, d.wrap(u + e, clip=False), kappa) - f) / e.sum()
+                      for e in (np.array([h[0], 0.0]), np.array([0.0, h[1]]))], axis=2)  # fmt: skip
+        M = np.einsum("kia,kib->kab", J, J)  # normal equations, solved by hand (2 x 2)
+        b = -np.einsum("kia,ki->ka", J, f)
+        det = M[:, 0, 0] * M[:, 1, 1] - M[:, 0, 1] * M[:, 1, 0]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            adj_b = np.stack([M[:, 1, 1] * b[:, 0] - M[:, 0, 1] * b[:, 1],
+                              M[:, 0, 0] * b[:, 1] - M[:, 1, 0] * b[:, 0]], axis=1)  # fmt: skip
+            step = adj_b / det[:, None]
+        u = u + np.clip(np.nan_to_num(step), -0.1 * span, 0.1 * span)
+    f = np.linalg.norm(_umbilic_residual(surface, d.wrap(u, clip=False), kappa), axis=1)
+    u = d.wrap(u, clip=False)
+    inside = np.all((u >= lo) & (u <= lo + span), axis=1)
+    u = u[(f < 1e-9) & inside]
+    keep: list[np.ndarray] = []
+    for p in u[np.lexsort((u[:, 1], u[:, 0]))]:
+        if all(np.abs(_rel(p[None], q[None], span, np.array(d.periodic))).max() > 1e-6
+               for q in keep):  # fmt: skip
+            keep.append(p)
+    return np.array(keep).reshape(-1, 2)
+
+
+def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """Points about ``step`` apart along lines ``ks`` and the line of each
+    (all lines evaluated in one call)."""
+    ks = np.asarray(ks, int)
+    if not len(ks):
+        return np.empty((0, 3)), np.empty(0, int)
+    a, b = -lines.ends[1, ks], lines.ends[0, ks]
+    counts = np.maximum(np.ceil((b - a) / step).astype(int) + 1, 2)
+    ids = np.repeat(ks, counts)
+    first = np.repeat(np.cumsum(counts) - counts, counts)
+    frac = (np.arange(len(ids)) - first) / np.repeat(counts - 1, counts)
+    t = np.repeat(a, counts) + frac * np.repeat(b - a, counts)
+    uv = lines.domain.wrap(lines.uv(ids, t), clip=False)
+    return lines.surface.point(uv[:, 0], uv[:, 1]), ids
+
+
+def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tuple) -> list[int]:
+    """``n`` of the traced lines ``cand`` spread as evenly over the patch as
+    they allow, none retracing another.
+
+    Greedy: each pick is the candidate line that minimizes the area-weighted
+    mean squared distance of the patch (grid points) to the lines picked so
+    far (the first pick is the most central line).  Energies are compared
+    rounded to 1e-9, ties go to the earlier candidate: the choice does not
+    hang on the last bits of floating point.
+    """
+    size = float(surface.size)
+    _G, GP, weight = grid
+    coarse = 2e-2 * size
+    cand = [int(k) for k in cand if lines.ends[0, k] + lines.ends[1, k] > 0]
+    if not cand:
+        return []
+    p, ids = _dense(lines, cand, coarse)
+    # squared distance of every grid point to every candidate (chunks of ~4M)
+    bounds = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
+    sq = np.empty((len(cand), len(GP)))
+    g2 = np.einsum("ij,ij->i", GP, GP)
+    p2 = np.einsum("ij,ij->i", p, p)
+    per_chunk = max(1, int(4e6 // max(len(GP) * len(p) / len(cand), 1)))
+    for c0 in range(0, len(cand), per_chunk):
+        c1 = min(c0 + per_chunk, len(cand))
+        lo_, hi_ = bounds[c0], (bounds[c1] if c1 < len(cand) else len(p))
+        d2 = g2[None, :] + p2[lo_:hi_, None] - 2 * (p[lo_:hi_] @ GP.T)
+        sq[c0:c1] = np.minimum.reduceat(d2, bounds[c0:c1] - lo_, axis=0)
+    sq = np.maximum(sq, 0.0)
+    seed3 = surface.points(surface.domain.wrap(lines.uv(cand, np.zeros(len(cand))), clip=False))
+    # which candidate seeds lie on which other candidate line (it would be
+    # drawn twice): segments of the fine polylines next to each seed
+    from scipy.spatial import cKDTree
+
+    tol = FIELD_DUPLICATE_RTOL * size
+    fine = 2e-3 * size
+    q, qid = _dense(lines, cand, fine)
+    row_of = {k: r for r, k in enumerate(cand)}
+    on_line = np.zeros((len(cand), len(cand)), bool)
+    for j, near in enumerate(cKDTree(q).query_ball_point(seed3, r=fine + tol)):
+        near = np.asarray(near, int)
+        near = near[qid[near] != cand[j]]
+        if not len(near):
+            continue
+        a = np.concatenate([near, near])
+        b = np.concatenate([np.maximum(near - 1, 0), np.minimum(near + 1, len(q) - 1)])
+        a, b = a[qid[a] == qid[b]], b[qid[a] == qid[b]]
+        ab = q[b] - q[a]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            tt = np.clip(np.einsum("ij,ij->i", seed3[j] - q[a], ab)
+                         / np.einsum("ij,ij->i", ab, ab), 0, 1)  # fmt: skip
+        dist = np.linalg.norm(q[a] + np.nan_to_num(tt)[:, None] * ab - seed3[j], axis=1)
+        for k in np.unique(qid[a][dist <= tol]):
+            on_line[j, row_of[int(k)]] = True
+    best = np.full(len(GP), np.inf)
+    usable = np.ones(len(cand), bool)
+    picked: list[int] = []
+    while len(picked) < n and usable.any():
+        energy = np.minimum(best, sq) @ weight
+        energy = np.round(energy / max(float(energy[usable].max()), 1e-300), 9)
+        row = int(np.flatnonzero(usable)[np.argmin(energy[usable])])
+        picked.append(cand[row])
+        best = np.minimum(best, sq[row])
+        usable[row] = False
+        usable[on_line[:, row] | on_line[row]] = False  # the same line again
+    return sorted(picked)
+
+
+def field_line_batches(
+    surface: Any,
+    field: Any,
+    n1: int,
+    n2: int,
+    stop: float | None = None,
+    family: str = "curvature",
+    spacing: str = "complete",
+) -> list[CurveBatch]:
+    """Batches of ``n1`` lines of the branch that runs like the ``u1 = const``
+    lines at the centre of the domain and ``n2`` of the other (see the module
+    docstring for ``spacing``)."""
+    if spacing not in SPACINGS:
+        choices = ", ".join(map(repr, SPACINGS))
+        raise ValueError(f"spacing must be one of {choices}, got {spacing!r}")
+    if n1 + n2 <= 0:
+        return []
+
+    d = surface.domain
+    if _parameter_lines_are_field_lines(surface, field):
+        return parameter_line_batches(surface, d.lines(0, n1), d.lines(1, n2), family, family)
+    stop = field.stop if stop is None else stop
+    singular = umbilics(surface) if field is principal_field else np.empty((0, 2))
+    c = _center_seed(surface, field, stop)
+    D, _, G = field(surface, np.array([c]))
+    # the lines through the centre place seeds only: a loose tolerance will do
+    both = trace(surface, field, [c, c], D[0], stop=stop, rtol=1e-6, singular=singular)
+    # the branch running like the u1 = const lines (along x2) at the centre
+    x1, x2 = surface.derivatives(c[0], c[1])
+    e = D[0, :, :1] * x1 + D[0, :, 1:] * x2
+    a = 0 if abs(e[0] @ x2) >= abs(e[1] @ x2) else 1
+    if spacing == "even":
+        from ._even_spacing import even_batches
+
+        return even_batches(surface, field, both, a, n1, n2, stop, family, singular)
+    grid = _grid(surface, field, stop)
+    G, _, weight = grid
+    # candidate seeds of both families, traced together: many along the
+    # transversal (regular spacing where the lines cross it) and a coarse
+    # grid over the patch (the parts they miss)
+    coarse = np.flatnonzero(weight > 0)[:: max(len(G) // 25, 1)]
+    seeds, dirs, fam = [], [], []
+    for which, n in ((a, n1), (1 - a, n2)):
+        if n <= 0:
+            continue
+        transversal = 1 - which  # the line of the other branch through the centre
+        s_f, d_f = np.array([c]), D[0, which][None]
+        if both.ends[0, transversal] + both.ends[1, transversal] > 0:
+            s_t, tangent = _spread(both, transversal, 2 * n + 1)
+            s_f = np.concatenate([s_f, s_t])
+            d_f = np.concatenate([d_f, _crossing(field, surface, s_t, tangent)])
+        s_f = np.concatenate([s_f, G[coarse]])
+        d_f = np.concatenate([d_f, field(surface, G[coarse])[0][:, which]])
+        keep = _stable(surface, field, s_f, d_f)
+        seeds.append(s_f[keep])
+        dirs.append(d_f[keep])
+        fam.append(np.full(int(keep.sum()), n))
+    lines = trace(
+        surface, field, np.concatenate(seeds), np.concatenate(dirs), stop=stop, singular=singular
+    )
+    out, start = [], 0
+    for f in fam:
+        cand = np.arange(start, start + len(f))
+        start += len(f)
+        b = lines.batch(family, _select(surface, lines, cand, int(f[0]) if len(f) else 0, grid))
+        if b is not None:
+            out.append(b)
+    return out
+
+
+def numeric_lines_of_curvature(surface: Any, n1: int, n2: int, spacing: str = "complete") -> list:
+    """Lines of curvature of any surface, integrated from the principal
+    direction field (:mod:`lgraph.fieldlines`).
+
+    ``n1`` lines of the family that runs like the ``u1 = const`` lines at the
+    centre of the domain, ``n2`` of the other.  By default every line is
+    complete: it runs until the patch boundary, a pole, an umbilic, or until it
+    closes.  ``spacing="even"`` trims lines where they come close to another
+    (evenly spaced streamlines).  Where the parameter lines are lines of
+    curvature (``g12 = L12 = 0``, the paper's Proposition 4.1) they are drawn.
+
+    >>> import lgraph as lg
+    >>> b = numeric_lines_of_curvature(lg.Torus(3, 1), 2, 0)
+    >>> bool(b[0].closed.all())
+    True
+    """
+    return field_line_batches(surface, principal_field, n1, n2, family="curvature", spacing=spacing)
