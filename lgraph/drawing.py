@@ -481,6 +481,10 @@ def _umask() -> int:
     return mask
 
 
+#: Most dashes :func:`dash_polyline` makes of one polyline (memory budget).
+MAX_DASHES = 1_000_000
+
+
 def dash_polyline(points: np.ndarray, pattern: Sequence[float]) -> list[np.ndarray]:
     """Split a polyline into its dashes (for backends without native dashes).
 
@@ -511,6 +515,12 @@ def dash_polyline(points: np.ndarray, pattern: Sequence[float]) -> list[np.ndarr
     on = pat[0::2]
     offsets = np.concatenate([[0.0], np.cumsum(pat)[1:-1:2]])
     n_periods = int(np.ceil(total / period)) + 1
+    if n_periods * len(on) > MAX_DASHES:
+        raise ValueError(
+            f"dash_polyline: pattern {tuple(pat.tolist())} gives {n_periods * len(on)} dashes "
+            f"along a polyline of length {total:g}; the limit is {MAX_DASHES} "
+            "(lengthen the pattern)"
+        )
     starts = (np.arange(n_periods)[:, None] * period + offsets[None, :]).ravel()
     ends = starts + np.tile(on, n_periods)
     keep = starts < total

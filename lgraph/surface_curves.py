@@ -24,6 +24,7 @@ import numpy as np
 from scipy.interpolate import make_interp_spline
 from scipy.spatial import cKDTree
 
+from ._budget import check_geodesic, check_intersection
 from ._own import CONTOUR, OFF
 from ._validate import as_number, count, finite_positive, one_of, vector3
 from .curvature import asymptotic_field
@@ -148,7 +149,8 @@ def geodesic(surface: Any, uv0: Any, direction: Any, length: float) -> CurveOnSu
     Integrates ``G u'' = -J^T (x11 u1'^2 + 2 x12 u1' u2' + x22 u2'^2)``: the
     acceleration of a geodesic is normal to the surface.
     """
-    sol, t1 = _geodesic_solution(surface, uv0, direction, float(length))
+    length = check_geodesic("geodesic", surface, uv0, direction, length)
+    sol, t1 = _geodesic_solution(surface, uv0, direction, length)
     return CurveOnSurface(
         surface, lambda t: surface.domain.wrap(np.asarray(sol(t))[:2].T), 0.0, max(t1, 1e-12)
     )
@@ -174,6 +176,7 @@ class Geodesic(Family):
     both_ways: bool = attrs.field(default=False, kw_only=True)
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        check_geodesic("Geodesic", surface, self.uv0, self.direction, self.length)
         fwd, t1 = _geodesic_solution(surface, self.uv0, self.direction, self.length)
         t0 = 0.0
         bwd = None
@@ -294,6 +297,7 @@ def intersection_curves(a: Any, b: Any, grid: int = 80, step: float | None = Non
     each curve is marched with predictor steps along the tangent (null vector
     of ``[J_a, -J_b]``) and Newton corrections.
     """
+    check_intersection("intersection_curves", a, b, grid, step)
     size = min(a.size, b.size)
     h = step if step is not None else size / 150
     da, db = a.domain, b.domain
@@ -379,6 +383,7 @@ class IntersectionCurve(Family):
             raise TypeError(f"IntersectionCurve: other must be a Surface, got {type(v).__name__}")
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        check_intersection("IntersectionCurve", surface, self.other, 80, None)
         curves = intersection_curves(surface, self.other)
         if not curves:
             return []

@@ -24,7 +24,8 @@ import numpy as np
 from . import _tolerance as tol
 from ._flips import locate_flips, seed_crossings
 from ._occlusion import Occlusion
-from ._sampling import Samples, refine
+from ._sampling import Samples, check_points, refine
+from ._validate import as_number
 from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
 from .geometry.transforms import Transform
 from .projectors import CentralProjector, ParallelProjector, Projector
@@ -164,10 +165,17 @@ def render(
             "Scene.render: projector must be a ParallelProjector or CentralProjector, "
             f"got {type(projector).__name__}"
         )
+    tolerance = as_number(tolerance)
     if not (
-        isinstance(tolerance, (int, float)) and math.isfinite(tolerance) and 0 < tolerance <= 0.1
+        isinstance(tolerance, (int, float))
+        and not isinstance(tolerance, bool)
+        and math.isfinite(tolerance)
+        and tol.MIN_CHORD_TOLERANCE <= tolerance <= 0.1
     ):
-        raise ValueError(f"Scene.render: tolerance must be a number in (0, 0.1], got {tolerance!r}")
+        raise ValueError(
+            f"Scene.render: tolerance must be a number in [{tol.MIN_CHORD_TOLERANCE:g}, 0.1] "
+            f"(a fraction of the figure's diagonal), got {tolerance!r}"
+        )
     hidden_style = HIDDEN_STYLE if hidden_style is None else hidden_style
     nodes = scene.nodes
     batches = [
@@ -176,12 +184,7 @@ def render(
         for b in scene.batches(node, local_projector(projector, node.transform))
         if len(b)
     ]
-    n_initial = tol.INITIAL_SAMPLES * sum(len(b) for _, b in batches)
-    if n_initial > tol.MAX_POINTS:
-        raise ValueError(
-            f"Scene.render: {sum(len(b) for _, b in batches)} curves need more than "
-            f"{tol.MAX_POINTS} sample points; draw fewer lines"
-        )
+    check_points(tol.INITIAL_SAMPLES * sum(len(b) for _, b in batches))
     if not batches:
         return _with_marks(scene, [], nodes, projector, hidden_lines, hidden_style, page)
     s = Samples([(ni, b, nodes[ni].transform) for ni, b in batches], projector)
