@@ -17,8 +17,11 @@ from __future__ import annotations
 
 import math
 import os
+import signal
 import tempfile
+import threading
 from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -463,16 +466,55 @@ class Drawing:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=parent)
         os.close(fd)
         try:
-            writer(drawing, Path(tmp), **options)
-            os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files
-            os.replace(tmp, path)
-        except BaseException:
+            with _removed_on_signals(tmp):
+                writer(drawing, Path(tmp), **options)
+                os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files
+                os.replace(tmp, path)
+        except BaseException as exc:
             try:
                 os.unlink(tmp)
             except OSError:
                 pass
+            if isinstance(exc, OSError) and exc.filename in (tmp, Path(tmp)):
+                # name the file the user asked for, not the temporary one
+                raise type(exc)(exc.errno, exc.strerror, str(path)) from None
             raise
         return path
+
+
+@contextmanager
+def _removed_on_signals(tmp: str) -> Iterator[None]:
+    """While writing ``tmp``: a SIGTERM or SIGHUP first removes it, then takes
+    its usual course (the previous handler, or the default action, which ends
+    the process).  Only in the main thread (where signal handlers live)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    signums = [getattr(signal, n) for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
+    previous: dict[int, Any] = {}
+
+    def handler(signum: int, frame: Any) -> None:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        prev = previous.get(signum, signal.SIG_DFL)
+        signal.signal(signum, prev)
+        if callable(prev):
+            prev(signum, frame)
+        elif prev != signal.SIG_IGN:
+            os.kill(os.getpid(), signum)  # the default action, now that tmp is gone
+
+    try:
+        for sig in signums:
+            previous[sig] = signal.signal(sig, handler)
+    except (ValueError, OSError):  # pragma: no cover - signals unavailable here
+        pass
+    try:
+        yield
+    finally:
+        for sig, prev in previous.items():
+            signal.signal(sig, prev if prev is not None else signal.SIG_DFL)
 
 
 def _umask() -> int:
