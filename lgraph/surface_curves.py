@@ -21,8 +21,6 @@ from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
-from scipy.interpolate import make_interp_spline
-from scipy.spatial import cKDTree
 
 from ._budget import check_geodesic, check_intersection
 from ._own import CONTOUR, OFF
@@ -298,6 +296,8 @@ def intersection_curves(a: Any, b: Any, grid: int = 80, step: float | None = Non
     of ``[J_a, -J_b]``) and Newton corrections.
     """
     check_intersection("intersection_curves", a, b, grid, step)
+    from scipy.interpolate import make_interp_spline  # imported when first needed
+    from scipy.spatial import cKDTree
     size = min(a.size, b.size)
     h = step if step is not None else size / 150
     da, db = a.domain, b.domain
