@@ -130,7 +130,7 @@ class Stroke:
     xyz : (n, 3) array
         World coordinates of the same points.
     uv : (n, 2) array or None
-        Parameters of the points on :attr:`surface`; None for free curves.
+        Parameters of the points on :attr:`!surface`; None for free curves.
     visible : bool
         False only for hidden parts (present when rendering with ``hidden_lines=True``).
     family : str

@@ -4,7 +4,7 @@ Nothing in a scene file is ever evaluated as Python: surfaces and families
 are looked up by registry name (:mod:`lgraph.plugins`), parameters must be
 plain numbers (a string where a number is expected is an error, whatever it
 contains), and every value is checked before anything is built.  The whole
-file is validated before :func:`load_scene_file` returns, so a partially
+file is validated before :func:`~lgraph.load_scene_file` returns, so a partially
 valid file renders nothing.  Every problem of a file is reported at once:
 :class:`SceneFileError` has one line per problem naming the file, the line
 and the key::
@@ -61,7 +61,42 @@ The format::
     surface = "sphere"           # (groups nest to any depth)
     params = { r = 1 }
 
-TOML is read with :mod:`tomllib` (Python >= 3.11); on Python 3.10 with the
+Every table and key:
+
+==============  ========================================================================
+table           keys
+==============  ========================================================================
+``projector``   ``kind`` (``"parallel"``, the default, or ``"central"``); parallel:
+                ``direction`` (3 numbers, toward the viewer) or ``azimuth`` and
+                ``elevation`` (degrees), ``up`` (with ``direction``); central: ``eye``
+                and ``target`` (3 numbers each) or ``azimuth``, ``elevation`` and
+                ``distance``, ``up`` (with ``eye``).  Required.
+``page``        ``preset`` (``"a4"``, ``"a5"``, ``"letter"``) with ``landscape`` and
+                ``margin``; or ``width`` and ``height`` (pt, both), ``margin``,
+                ``extent``.  Optional: the default crops the page to the figure.
+``render``      ``hidden_lines`` (bool), ``tolerance`` (1e-9 to 0.1 of the figure's
+                diagonal), ``hidden_style`` (a style table).  Optional.
+``save``        ``width``, ``height`` (a physical size such as ``"8.5cm"``, any format)
+                and the options of the output's backend (see
+                :func:`lgraph.backends.backend_options`).  Optional.
+``[[object]]``  ``surface`` (a registry name, ``lgraph plugins`` lists them, required),
+                ``params`` (the surface's parameters by name: numbers or arrays of
+                numbers), ``families`` (names, or tables with ``name`` and the
+                family's parameters; default ``["parameter_lines"]``), ``transform``
+                (an array of ``{ translate = [x, y, z] }``, ``{ rotate = { axis =
+                "x" | "y" | "z" | [x, y, z], degrees = d } }``, ``{ scale = s | [sx,
+                sy, sz] }``), ``style`` (a style table, or one per family name with
+                ``default`` for the rest), ``contour`` and ``hides`` (bools).
+``[[labels]]``  ``text`` and ``at`` (required), ``offset``, ``anchor``, ``size``,
+                ``color``, ``always``.
+``[[points]]``  ``at`` (required), ``size``, ``color``, ``always``.
+``[[group]]``   ``transform``, ``style`` and members: ``object``, ``labels``,
+                ``points`` and ``group`` tables (nested to any depth).
+style table     ``color`` (``"#rrggbb"``, a name or 3 numbers in [0, 1]), ``width``
+                (pt), ``dash`` (an array of on/off lengths in pt).
+==============  ========================================================================
+
+TOML is read with :mod:`!tomllib` (Python >= 3.11); on Python 3.10 with the
 ``tomli`` package (a dependency of lgraph there).  The file is UTF-8, with or
 without a byte-order mark.
 

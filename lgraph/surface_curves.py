@@ -423,7 +423,7 @@ def _vec(owner: str, name: str) -> Any:
 class Parallelogram(Surface):
     """Planar patch ``origin + u1 e1 + u2 e2``, ``0 <= u1, u2 <= 1``.
 
-    Its contour is its boundary; hits are exact.  :meth:`centered` builds one
+    Its contour is its boundary; hits are exact.  :meth:`!centered` builds one
     around a point (e.g. a tangent plane).
 
     >>> p = Parallelogram((0, 0, 0), (1, 0, 0), (2, 0, 0))
@@ -534,7 +534,7 @@ class Arrow(Surface):
     """A thin 3-D arrow from ``tail`` to ``tip``: a cylinder shaft and a cone head.
 
     Drawn by its outline only (shaft and head silhouettes and the rim of the
-    head: its :meth:`contour`); add it with ``scene.add(arrow, lg.Contour(),
+    head: its :meth:`!contour`); add it with ``scene.add(arrow, lg.Contour(),
     contour=False)`` so that no parameter lines are drawn.  It hides what is
     behind it and is hidden like any surface.
 

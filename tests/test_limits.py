@@ -264,3 +264,28 @@ def test_a_scene_far_from_the_origin_draws_as_at_the_origin(central: bool) -> No
         gap = np.linalg.norm(ea[:, None] - eb[None], axis=-1)
         assert gap.min(axis=0).max() < 1e-6 * size
         assert gap.min(axis=1).max() < 1e-6 * size
+
+
+def test_the_limits_page_lists_every_budget_with_its_value() -> None:
+    from lgraph import _tolerance as tol
+    from lgraph.backends import png
+    from lgraph.drawing import MAX_DASHES
+
+    page = (ROOT / "docs" / "limits.rst").read_text(encoding="utf-8")
+    values = {
+        "MIN_CHORD_TOLERANCE": f"``{tol.MIN_CHORD_TOLERANCE:.0e}``".replace("e-0", "e-"),
+        "MAX_POINTS": f"``{tol.MAX_POINTS}``",
+        "MAX_CURVES": f"``{tol.MAX_CURVES}``",
+        "HIT_MAX_CANDIDATES": f"``{tol.HIT_MAX_CANDIDATES}``",
+        "HIT_CHUNK_RAYS": f"``{tol.HIT_CHUNK_RAYS}``",
+        "MAX_GEODESIC_TURNS": f"``{tol.MAX_GEODESIC_TURNS}``",
+        "MAX_INTERSECTION_GRID": f"``{tol.MAX_INTERSECTION_GRID}``",
+        "MAX_MARCH_STEPS": f"``{tol.MAX_MARCH_STEPS}``",
+        "MAX_FRAMES": f"``{tol.MAX_FRAMES}``",
+        "MAX_DASHES": f"``{MAX_DASHES}``",
+        "MAX_SIDE": f"``{png.MAX_SIDE}``",
+        "COINCIDENT_RTOL": f"{tol.COINCIDENT_RTOL:.0e}".replace("e-0", "e-"),
+    }
+    for name, value in values.items():
+        assert f"``{name}" in page, name
+        assert value in page, (name, value)

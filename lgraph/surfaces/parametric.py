@@ -282,7 +282,7 @@ class Torus(_QuarticSurface):
 
     ``u1`` runs around the axis (``z``), ``u2`` around the tube; both periodic.
     Lines of curvature are the parameter lines (meridians and parallels).  Its
-    ray test is exact (a quartic in the ray parameter, :meth:`hits`; some 20
+    ray test is exact (a quartic in the ray parameter, :meth:`!hits`; some 20
     times faster than the numeric default); the contour is numeric.
 
     >>> Torus(2, 0)
