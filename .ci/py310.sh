@@ -8,7 +8,9 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 py=""
 for cand in python3.10 "$HOME/.pyenv/versions/3.10"*/bin/python; do
-  if command -v "$cand" >/dev/null 2>&1; then py="$(command -v "$cand")"; break; fi
+  if "$cand" -c 'import sys; assert sys.version_info[:2] == (3, 10)' >/dev/null 2>&1; then
+    py="$cand"; break
+  fi
 done
 if [ -z "$py" ]; then
   echo "ci: py310: no Python 3.10 found; the Python 3.10 check is skipped"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 import textwrap
@@ -377,3 +378,15 @@ def test_every_problem_of_a_file_is_reported_at_once(tmp_path):
     assert len(str(e.value).splitlines()) == len(e.value.errors) >= 4
     lines = [ln for ln, _, _ in e.value.errors]
     assert lines == sorted(lines) and all(isinstance(ln, int) for ln in lines)
+
+
+def test_an_eye_inside_an_object_is_reported_before_rendering(tmp_path):
+    text = BASE.replace('kind = "parallel"', 'kind = "central"')
+    text = re.sub(r"direction = \[[^\]]*\]", "eye = [0.5, 0, 0]", text)
+    path = write(tmp_path, text)
+    with pytest.raises(SceneFileError) as e:
+        load_scene_file(path)
+    assert "projector.eye: object[0]" in str(e.value) and "behind the eye" in str(e.value)
+    far = write(tmp_path, re.sub(r"eye = \[0.5, 0, 0\]", "eye = [20, 5, 3]", text))
+    scene, projector, _ = load_scene_file(far)
+    assert scene.render(projector).strokes
