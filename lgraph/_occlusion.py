@@ -14,8 +14,27 @@ from .surfaces.quadrics import Quadric
 
 if TYPE_CHECKING:
     from .scene import Node
+    from .surfaces._base import Surface
 
 __all__ = ["Occlusion"]
+
+
+def _lies_on(surface: Surface, points: np.ndarray) -> np.ndarray:
+    """Which local ``points`` lie on ``surface``'s implicit equation (within
+    ``COINCIDENT_RTOL`` of its size, distance estimated as ``|F| / |grad F|``);
+    all False for a surface without ``implicit``."""
+    f = getattr(surface, "implicit", None)
+    if f is None or not len(points):
+        return np.zeros(len(points), dtype=bool)
+    size = surface.size
+    h = 1e-6 * size
+    with np.errstate(all="ignore"):
+        F = np.asarray(f(points), dtype=float)
+        grad = np.stack(
+            [(f(points + h * e) - f(points - h * e)) / (2 * h) for e in np.eye(3)], axis=-1
+        )
+        dist = np.abs(F) / np.linalg.norm(grad, axis=-1)
+    return dist <= tol.COINCIDENT_RTOL * size
 
 
 class Occlusion:
@@ -180,6 +199,10 @@ class Occlusion:
                 continue
             own = np.where(owner[idx] == j, kind[idx], OFF).astype(np.int8)
             o = inv.apply(xyz[idx])
+            tie = np.flatnonzero((owner[idx] != j) & (kind[idx] != OFF))
+            if len(tie):  # the tie rule: points lying on this surface count as its own
+                on = tie[_lies_on(surf, o[tie])]
+                own[on] = kind[idx[on]]
             v = inv.apply_vector(dirs[idx])
             out[idx] |= surf.hits(o, v, smax[idx], own)
         return out

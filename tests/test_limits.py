@@ -212,6 +212,31 @@ def test_the_same_sphere_twice_draws_its_outline_whole(direction) -> None:
     assert lengths == pytest.approx([3 * np.pi] * 2, rel=2e-4)
 
 
+COINCIDENT = {
+    "sphere": lambda: lg.Sphere(1),
+    "paraboloid patch": lambda: lg.EllipticParaboloid(1, 1),
+    "hyperboloid patch": lambda: lg.HyperboloidOneSheet(1, 1, 1),
+    "torus": lambda: lg.Torus(3, 1),
+}
+
+
+@pytest.mark.parametrize("name", sorted(COINCIDENT))
+def test_a_surface_added_twice_draws_exactly_twice_what_it_draws_once(name) -> None:
+    """The tie rule: every family of the doubled scene (outline included) is
+    exactly twice the single one, in strokes and in length."""
+    p = lg.ParallelProjector(direction=(1, 2, 3))
+    one, two = lg.Scene(), lg.Scene()
+    one.add(COINCIDENT[name]())
+    for _ in range(2):
+        two.add(COINCIDENT[name]())
+    a, b = one.render(p), two.render(p)
+    assert len(b.strokes) == 2 * len(a.strokes)
+    for family in {s.family for s in a.strokes}:
+        la = sum(np.hypot(*np.diff(s.xy, axis=0).T).sum() for s in a.strokes if s.family == family)
+        lb = sum(np.hypot(*np.diff(s.xy, axis=0).T).sum() for s in b.strokes if s.family == family)
+        assert lb == pytest.approx(2 * la, rel=1e-9), family
+
+
 def test_coincident_spheres_hide_what_one_hides() -> None:
     p = lg.ParallelProjector(direction=(1, -2, 1.5))
     one, two = lg.Scene(), lg.Scene()
