@@ -390,3 +390,21 @@ def test_an_eye_inside_an_object_is_reported_before_rendering(tmp_path):
     far = write(tmp_path, re.sub(r"eye = \[0.5, 0, 0\]", "eye = [20, 5, 3]", text))
     scene, projector, _ = load_scene_file(far)
     assert scene.render(projector).strokes
+
+
+def test_tikz_plugin_options_pass_from_save(tmp_path, monkeypatch):
+    """The example TikZ plugin declares ``standalone`` as a keyword parameter;
+    ``[save] standalone = true`` reaches it (registered here by hand, as its
+    entry point would)."""
+    from lgraph import backends
+
+    monkeypatch.syspath_prepend(
+        str(Path(__file__).resolve().parents[1] / "plugins/lgraph-tikz/src")
+    )
+    lgraph_tikz = pytest.importorskip("lgraph_tikz")
+    monkeypatch.setitem(backends._BACKENDS, ".tex", lgraph_tikz.write_tikz)
+    path = write(tmp_path, BASE + "\n[save]\nstandalone = true\n")
+    scene, projector, options = load_scene_file(path, output=tmp_path / "f.tex")
+    assert options["save"] == {"standalone": True}
+    out = scene.render(projector).save(tmp_path / "f.tex", **options["save"])
+    assert "\\documentclass" in out.read_text()
