@@ -22,7 +22,13 @@ from typing import Any
 
 from . import _tolerance as tol
 
-__all__ = ["check_frames", "check_geodesic", "check_intersection", "check_surface"]
+__all__ = [
+    "check_frames",
+    "check_geodesic",
+    "check_intersection",
+    "check_parameters",
+    "check_surface",
+]
 
 
 def _real(owner: str, name: str, value: Any, what: str) -> float:
@@ -47,6 +53,24 @@ def check_surface(owner: str, name: str, value: Any) -> Any:
     if not isinstance(value, Surface):
         raise TypeError(f"{owner}: {name} must be a Surface, got {type(value).__name__}")
     return value
+
+
+def check_parameters(owner: str, surface: Any, u1: Any, u2: Any) -> None:
+    """``surface`` a Surface and ``u1, u2`` finite numbers or arrays of them."""
+    import numpy as np
+
+    check_surface(owner, "surface", surface)
+    for name, value in (("u1", u1), ("u2", u2)):
+        try:
+            a = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(
+                f"{owner}: {name} must be a finite number or an array of them, got {value!r}"
+            ) from None
+        if not np.all(np.isfinite(a)):
+            raise ValueError(
+                f"{owner}: {name} must be a finite number or an array of them, got {value!r}"
+            )
 
 
 def check_frames(owner: str, frames: Any) -> int:

@@ -457,6 +457,10 @@ class Drawing:
         """
         from .backends import get_backend
 
+        if not isinstance(path, (str, os.PathLike)):
+            raise TypeError(
+                f"Drawing.save: path must be a file name (str or path), got {type(path).__name__}"
+            )
         path = Path(path)
         writer = get_backend(path.suffix)
         drawing = self.sized(width, height)

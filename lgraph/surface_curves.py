@@ -154,6 +154,19 @@ def geodesic(surface: Any, uv0: Any, direction: Any, length: float) -> CurveOnSu
     )
 
 
+def _pair(owner: str, name: str, value: Any) -> tuple[float, float]:
+    """Converter: a pair of finite numbers (ValueError naming ``name`` otherwise)."""
+    try:
+        a, b = (float(as_number(x)) for x in value)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"{owner}: {name} must be a pair of finite numbers, got {value!r}"
+        ) from None
+    if not (np.isfinite(a) and np.isfinite(b)):
+        raise ValueError(f"{owner}: {name} must be a pair of finite numbers, got {value!r}")
+    return a, b
+
+
 @attrs.frozen(eq=False)
 class Geodesic(Family):
     """One geodesic of the node's surface (family ``"geodesic"``): from the
@@ -166,8 +179,10 @@ class Geodesic(Family):
     ValueError: Geodesic: length must be a positive finite number, got 0
     """
 
-    uv0: tuple[float, float] = attrs.field(converter=lambda v: tuple(float(x) for x in v))
-    direction: tuple[float, float] = attrs.field(converter=lambda v: tuple(float(x) for x in v))
+    uv0: tuple[float, float] = attrs.field(converter=lambda v: _pair("Geodesic", "uv0", v))
+    direction: tuple[float, float] = attrs.field(
+        converter=lambda v: _pair("Geodesic", "direction", v)
+    )
     length: float = attrs.field(
         default=10.0, converter=as_number, validator=finite_positive("Geodesic")
     )
@@ -298,6 +313,7 @@ def intersection_curves(a: Any, b: Any, grid: int = 80, step: float | None = Non
     check_intersection("intersection_curves", a, b, grid, step)
     from scipy.interpolate import make_interp_spline  # imported when first needed
     from scipy.spatial import cKDTree
+
     size = min(a.size, b.size)
     h = step if step is not None else size / 150
     da, db = a.domain, b.domain

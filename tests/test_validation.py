@@ -90,3 +90,24 @@ def test_a_bad_derivatives_func_is_reported_at_construction() -> None:
     s = lg.ParametricSurface(f, (0, 1), (0, 1), derivatives_func=good)
     x1, x2 = s.derivatives(np.array([0.5]), np.array([0.25]))
     assert np.allclose(x1, [[1, 0, 0.25]]) and np.allclose(x2, [[0, 1, 0.5]])
+
+
+def test_more_calls_name_their_bad_parameter(tmp_path) -> None:
+    s = lg.Sphere(1)
+    with pytest.raises(TypeError, match="principal_curvatures: surface must be a Surface"):
+        lg.principal_curvatures("x", 0, 0)
+    with pytest.raises(ValueError, match="principal_directions: u1 must be a finite number"):
+        lg.principal_directions(s, np.nan, 0)
+    with pytest.raises(ValueError, match="Geodesic: uv0 must be a pair of finite numbers"):
+        lg.Geodesic("ab", (1, 0))
+    with pytest.raises(TypeError, match="Scene.add: contour must be True or False"):
+        lg.Scene().add(s, contour="no")
+    sc = lg.Scene()
+    sc.add(s)
+    d = sc.render(P)
+    for bad in (123, None):
+        with pytest.raises(TypeError, match="Drawing.save: path must be a file name"):
+            d.save(bad)
+    k1, k2 = lg.principal_curvatures(s, np.float64(0.3), np.array([0.1, 0.2]))
+    assert np.allclose(k1, k2)  # a sphere is umbilic everywhere
+    assert np.allclose(np.abs(k1), 1.0)
