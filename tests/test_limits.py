@@ -2,11 +2,12 @@
 ValueError naming the parameter and the limit), degenerate surfaces are
 reported, coincident surfaces and scenes far from the origin draw correctly.
 
-The refused cases run in a child process with an address-space limit of
-1 GB: a refusal that first allocated gigabytes fails there."""
+The refused cases run in a child process whose peak resident memory must
+stay under 1 GB: a refusal that first allocated gigabytes fails there."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import textwrap
@@ -22,15 +23,27 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _run_capped(code: str, limit_mb: int = 1024) -> subprocess.CompletedProcess:
-    """Run ``code`` in a child Python limited to ``limit_mb`` MB of memory."""
+    """Run ``code`` in a child Python; it must stay under ``limit_mb`` MB of
+    resident memory (checked with getrusage at its end; the address space is
+    capped at twice that as a guard against a runaway allocation)."""
     prog = textwrap.dedent(
         f"""
-        import resource, sys
-        resource.setrlimit(resource.RLIMIT_AS, ({limit_mb} << 20, {limit_mb} << 20))
+        import atexit, resource, sys
+        cap = {2 * limit_mb} << 20
+        resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
         sys.path.insert(0, {str(ROOT)!r})
+        def peak():
+            mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+            print("PEAK-MB", mb, "OK" if mb < {limit_mb} else "TOO-MUCH")
+        atexit.register(peak)
         """
     ) + textwrap.dedent(code)
-    return subprocess.run([sys.executable, "-c", prog], capture_output=True, text=True, timeout=120)
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    r = subprocess.run(
+        [sys.executable, "-c", prog], capture_output=True, text=True, timeout=120, env=env
+    )
+    assert "OK" in r.stdout.split("PEAK-MB")[-1], r.stdout[-500:] + r.stderr[-2000:]
+    return r
 
 
 def _torus_winding(k: int) -> lg.ParametricSurface:
