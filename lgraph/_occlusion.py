@@ -37,6 +37,24 @@ def _lies_on(surface: Surface, points: np.ndarray) -> np.ndarray:
     return dist <= tol.COINCIDENT_RTOL * size
 
 
+def _twins(nodes: tuple[Node, ...], j: int) -> np.ndarray:
+    """Indices of the nodes whose surface is node ``j``'s (the same object or
+    an equal one) under the same transform, ``j`` included."""
+    sj, tj = nodes[j].surface, nodes[j].transform
+    out = []
+    for k, node in enumerate(nodes):
+        s = node.surface
+        if s is None or type(s) is not type(sj):
+            continue
+        try:
+            same = s is sj or bool(s == sj)
+        except Exception:  # noqa: BLE001 - an __eq__ comparing arrays, ...: not twins
+            same = False
+        if same and node.transform == tj:
+            out.append(k)
+    return np.array(out, dtype=np.int64)
+
+
 class Occlusion:
     """Tests world points against every hiding surface of the scene.
 
@@ -91,6 +109,10 @@ class Occlusion:
                 quads.append((j, box, A, b, d, tol.SELF_HIT_RTOL * size))
             else:
                 self.items.append((j, surf, inv, box))
+        #: per asked surface, the nodes holding the same surface in the same place
+        #: (their points are its own points: the tie rule for surfaces that have
+        #: no implicit equation, such as a ParametricSurface added twice)
+        self.twins = {j: _twins(nodes, j) for j, _, _, _ in self.items}
         self._setup_grid(quads)
         #: relative cost of testing one point (1: the grouped quadric test)
         self.cost_per_point = 1.0 + sum(it[1].hit_cost for it in self.items)
@@ -197,9 +219,10 @@ class Occlusion:
                 idx = idx[(y >= y0 - pad) & (y <= y1 + pad)]
             if not len(idx):
                 continue
-            own = np.where(owner[idx] == j, kind[idx], OFF).astype(np.int8)
+            mine = np.isin(owner[idx], self.twins[j])
+            own = np.where(mine, kind[idx], OFF).astype(np.int8)
             o = inv.apply(xyz[idx])
-            tie = np.flatnonzero((owner[idx] != j) & (kind[idx] != OFF))
+            tie = np.flatnonzero(~mine & (kind[idx] != OFF))
             if len(tie):  # the tie rule: points lying on this surface count as its own
                 on = tie[_lies_on(surf, o[tie])]
                 own[on] = kind[idx[on]]
