@@ -78,3 +78,17 @@ def test_the_previous_signal_handler_is_restored(tmp_path: Path) -> None:
     sc.render(lg.ParallelProjector(direction=(1, 2, 3))).save(tmp_path / "a.svg")
     assert signal.getsignal(signal.SIGTERM) is before
     assert os.listdir(tmp_path) == ["a.svg"]
+
+
+def test_a_stale_temporary_file_is_never_taken_for_the_output(tmp_path: Path) -> None:
+    """A killed process (SIGKILL cannot be caught) may leave ``.fig.svg.*.part``
+    behind; a later save writes its own temporary file and the target, and
+    leaves the stale one alone (it is hidden and never has the target's name)."""
+    stale = tmp_path / ".fig.svg.abc123.part"
+    stale.write_text("half a figure")
+    sc = lg.Scene()
+    sc.add(lg.Sphere(1), lg.ParameterLines(2, 2))
+    out = sc.render(lg.ParallelProjector(direction=(1, 2, 3))).save(tmp_path / "fig.svg")
+    assert out.read_text().startswith("<?xml") or "<svg" in out.read_text()
+    assert stale.read_text() == "half a figure"
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".fig.svg.abc123.part", "fig.svg"]
