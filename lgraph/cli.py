@@ -76,6 +76,14 @@ def _render(args: argparse.Namespace) -> int:
     from .scenefile import SceneFileError, load_scene_file
 
     out = check_output(args.output or Path(args.scene).with_suffix(".pdf"))
+    for name in ("width", "height"):  # physical sizes: checked before rendering
+        if getattr(args, name, None) is not None:
+            from .units import length_pt
+
+            try:
+                length_pt(getattr(args, name), name)
+            except ValueError as e:
+                raise InputError(f"--{name}: {e}") from None
     try:
         scene, projector, options = load_scene_file(args.scene, output=out)
     except SceneFileError as e:

@@ -166,3 +166,15 @@ def test_debug_shows_the_traceback(tmp_path):
     path = _scene(tmp_path, "\n[render]\ntolerance = 1e-300\n")
     with pytest.raises(Exception, match="render.tolerance"):
         main(["--debug", "render", str(path)])
+
+
+def test_a_bad_width_is_reported_before_rendering(tmp_path, capsys, monkeypatch):
+    import lgraph.visibility as vis
+
+    def boom(*a, **k):
+        raise AssertionError("rendered although --width is wrong")
+
+    monkeypatch.setattr(vis, "render", boom)
+    path = _scene(tmp_path)
+    assert main(["render", str(path), "--width", "8.5 parsecs"]) == 2
+    assert "--width:" in capsys.readouterr().err
