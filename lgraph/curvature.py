@@ -209,7 +209,7 @@ def numeric_lines_of_curvature(
     surface: Any, n1: int, n2: int, spacing: str = "complete"
 ) -> list:
     """Lines of curvature of any surface, integrated from the principal
-    direction field (:mod:`lgraph.fieldlines`).
+    direction field (:mod:`!lgraph.fieldlines`).
 
     ``n1`` lines of the family that runs like the ``u1 = const`` lines at the
     centre of the domain, ``n2`` of the other.  By default every line is

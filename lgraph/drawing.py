@@ -162,7 +162,7 @@ class PlacedLabel:
     text : str
         The text (``$...$`` is TeX mathematics).
     xy : (2,) array
-        Projected coordinates of the anchor (the space of :attr:`Stroke.xy`).
+        Projected coordinates of the anchor (the space of :attr:`!Stroke.xy`).
     xyz : (3,) array
         World coordinates of the anchor.
     visible : bool
@@ -363,7 +363,7 @@ class Drawing:
         return out
 
     def label_boxes(self) -> np.ndarray:
-        """``(n, 4)`` ink boxes ``x0, y0, x1, y1`` of :attr:`labels` on the page (pt, y up)."""
+        """``(n, 4)`` ink boxes ``x0, y0, x1, y1`` of :attr:`!labels` on the page (pt, y up)."""
         scale, offset, _, _ = self._layout()
         out = np.empty((len(self.labels), 4))
         for i, lab in enumerate(self.labels):
@@ -399,7 +399,7 @@ class Drawing:
         """This drawing on a page cropped to the figure, scaled to a physical size.
 
         ``width`` and ``height`` are lengths (``"8.5cm"``, ``"60mm"``,
-        ``"3in"``, ``"200pt"`` or a number of pt, see :func:`lgraph.units.length_pt`).
+        ``"3in"``, ``"200pt"`` or a number of pt, see :func:`!lgraph.units.length_pt`).
         With one of them the page has exactly that width (height); with both the
         figure keeps its aspect and fits inside ``width`` x ``height``.  Line
         widths and label sizes stay in pt.

@@ -54,7 +54,7 @@ class AsymptoticLines(Family):
 
     Surfaces with closed forms supply ``asymptotic_lines(n1, n2)`` (the rulings
     of the hyperboloid of one sheet and the hyperbolic paraboloid); others are
-    integrated numerically (:mod:`lgraph.fieldlines`): complete lines by
+    integrated numerically (:mod:`!lgraph.fieldlines`): complete lines by
     default, or trimmed to even spacing with ``spacing="even"``.
 
     >>> AsymptoticLines(-1, 3)
