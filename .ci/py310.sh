@@ -18,7 +18,7 @@ if [ -z "$py" ]; then
 fi
 venv="$(mktemp -d)/venv310"
 "$py" -m venv "$venv" || { echo "ci: py310: cannot create a venv; skipped"; exit 0; }
-if ! timeout 600 "$venv/bin/python" -m pip install -q . pytest hypothesis >/dev/null 2>&1; then
+if ! timeout 600 "$venv/bin/python" -m pip install -q ".[test]" >/dev/null 2>&1; then
   echo "ci: py310: cannot install lgraph's dependencies for Python 3.10 (network?); skipped"
   exit 0
 fi
