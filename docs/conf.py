@@ -60,6 +60,13 @@ lgraph_gallery_build = True
 lgraph_gallery_only = ""
 lgraph_gallery_tolerance = 0.0  # 0: each figure's own default
 
+# nitpicky builds (-n) must be clean too.  Free-form numpy-style parameter
+# types ("(lo, hi)", "array (n, 3)", "callable, optional") and classes of other
+# libraries (numpy.ndarray, pathlib.Path, ...: no intersphinx, the docs build
+# offline) are not lgraph objects: only references to lgraph's own classes are
+# checked.
+nitpick_ignore_regex = [("py:class", r"(?!lgraph\.).*")]
+
 # numpy-style parameter types such as "(width, height)" become cross-references;
 # names shared by several classes (width, height) are ambiguous, not errors.
 suppress_warnings = ["ref.python"]

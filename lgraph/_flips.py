@@ -149,11 +149,18 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
 
 
 def _contour_crossings(
-    e: np.ndarray, A: np.ndarray, bq: np.ndarray, d: np.ndarray, projector: Projector
+    e: np.ndarray,
+    A: np.ndarray,
+    bq: np.ndarray,
+    d: np.ndarray,
+    projector: Projector,
+    centre: np.ndarray,
 ) -> np.ndarray:
     """Where exact ellipses ``x = c + p cos t + r sin t`` (rows of ``e``)
-    cross the contour of the ellipsoids ``x.A x + bq.x + d = 0`` they lie on:
-    ``(n, 2)`` angles ``t`` (defined modulo 2 pi; NaN: no crossing).
+    cross the contour of the ellipsoids ``x.A x + bq.x + d = 0`` they lie on
+    (coefficients in coordinates centred on ``centre``, see
+    :class:`~lgraph._occlusion.Occlusion`): ``(n, 2)`` angles ``t`` (defined
+    modulo 2 pi; NaN: no crossing).
 
     On its quadric a point is hidden by it exactly when ``(2 A x + bq) . w <
     0`` (``w`` toward the viewer), and there that function is linear in
@@ -161,9 +168,12 @@ def _contour_crossings(
     ``x . 2 A v + bq . v`` for a parallel view ``v``.  On the ellipse it is
     ``P + Q cos t + R sin t``, zero at ``atan2(R, Q) -+ acos(-P / hypot(Q, R))``.
     """
+    e = e.copy()
+    e[:, 0] -= centre
     if isinstance(projector, CentralProjector):
-        k = 2 * A @ projector.eye + bq
-        k0 = bq @ projector.eye + 2 * d
+        eye = projector.eye - centre
+        k = 2 * A @ eye + bq
+        k0 = bq @ eye + 2 * d
     else:
         v = projector.frame[2]
         k = 2 * A @ v
@@ -197,7 +207,7 @@ def _closed_form(
         return
     qs = q[sel]
     root = _contour_crossings(
-        s.ellipses[fl.cid[idx[sel]]], vis.q_A[qs], vis.q_b[qs], vis.q_d[qs], projector
+        s.ellipses[fl.cid[idx[sel]]], vis.q_A[qs], vis.q_b[qs], vis.q_d[qs], projector, vis.centre
     )
     lo, hi = np.minimum(a[sel], b[sel]), np.maximum(a[sel], b[sel])
     root += 2 * np.pi * np.round(((0.5 * (lo + hi))[:, None] - root) / (2 * np.pi))
@@ -229,7 +239,9 @@ def seed_crossings(s: Samples, vis: Occlusion, projector: Projector) -> None:
     c, q = c[vis.q_pd[q]], q[vis.q_pd[q]]
     if not len(c):
         return
-    root = _contour_crossings(s.ellipses[c], vis.q_A[q], vis.q_b[q], vis.q_d[q], projector)
+    root = _contour_crossings(
+        s.ellipses[c], vis.q_A[q], vis.q_b[q], vis.q_d[q], projector, vis.centre
+    )
     t0, span = s.t0[c][:, None], (s.t1 - s.t0)[c][:, None]
     root = t0 + np.mod(root - t0, 2 * np.pi)  # the first turn from t0 on (spans <= 2 pi)
     inside = np.isfinite(root) & (root < t0 + span)

@@ -14,8 +14,45 @@ from .surfaces.quadrics import Quadric
 
 if TYPE_CHECKING:
     from .scene import Node
+    from .surfaces._base import Surface
 
 __all__ = ["Occlusion"]
+
+
+def _lies_on(surface: Surface, points: np.ndarray) -> np.ndarray:
+    """Which local ``points`` lie on ``surface``'s implicit equation (within
+    ``COINCIDENT_RTOL`` of its size, distance estimated as ``|F| / |grad F|``);
+    all False for a surface without ``implicit``."""
+    f = getattr(surface, "implicit", None)
+    if f is None or not len(points):
+        return np.zeros(len(points), dtype=bool)
+    size = surface.size
+    h = 1e-6 * size
+    with np.errstate(all="ignore"):
+        F = np.asarray(f(points), dtype=float)
+        grad = np.stack(
+            [(f(points + h * e) - f(points - h * e)) / (2 * h) for e in np.eye(3)], axis=-1
+        )
+        dist = np.abs(F) / np.linalg.norm(grad, axis=-1)
+    return dist <= tol.COINCIDENT_RTOL * size
+
+
+def _twins(nodes: tuple[Node, ...], j: int) -> np.ndarray:
+    """Indices of the nodes whose surface is node ``j``'s (the same object or
+    an equal one) under the same transform, ``j`` included."""
+    sj, tj = nodes[j].surface, nodes[j].transform
+    out = []
+    for k, node in enumerate(nodes):
+        s = node.surface
+        if s is None or type(s) is not type(sj):
+            continue
+        try:
+            same = s is sj or bool(s == sj)
+        except Exception:  # noqa: BLE001 - an __eq__ comparing arrays, ...: not twins
+            same = False
+        if same and node.transform == tj:
+            out.append(k)
+    return np.array(out, dtype=np.int64)
 
 
 class Occlusion:
@@ -26,32 +63,56 @@ class Occlusion:
     quadric) pair found by a uniform grid over their projected bounding boxes,
     so the cost does not grow with the number of nodes.  Every other surface
     is asked through its own ``hits`` for the points inside its box.
+
+    The grouped quadrics are tested in coordinates centred on the scene
+    (``centre``, the middle of the hiding surfaces' bounding box): a scene far
+    from the origin gives the same results as the same scene at the origin
+    (the quadratic terms would otherwise cancel catastrophically).
+
+    Tie rule for coincident surfaces: a point that lies on another grouped
+    quadric (residual within ``COINCIDENT_RTOL`` of the equation's scale,
+    i.e. within about ``COINCIDENT_RTOL`` times the quadric's size) is tested
+    against that quadric as if it were its own (same ownership code): the
+    same sphere added twice hides exactly what one of them hides, never a
+    random half of the points by round-off.
     """
 
     def __init__(self, nodes: tuple[Node, ...], projector: Projector) -> None:
         self.projector = projector
         self.items = []  # (node index, surface, inverse transform, box) asked one by one
         quads = []  # (node index, box, A_w, b_w, d_w, eps) tested together
-        for j, node in enumerate(nodes):
-            surf = node.surface
-            if surf is None or not node.hides:
-                continue
-            inv = node.transform.inverse()
-            lo, hi = surf.bounds()
+        hiding = [(j, n) for j, n in enumerate(nodes) if n.surface is not None and n.hides]
+        world = {}
+        for j, node in hiding:
+            lo, hi = node.surface.bounds()
             corners = np.array(
                 [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
             )
-            wc = node.transform.apply(corners)
+            world[j] = node.transform.apply(corners)
+        allc = np.concatenate(list(world.values())) if world else np.zeros((1, 3))
+        allc = allc[np.isfinite(allc).all(axis=1)]
+        #: the origin of the coordinates the grouped quadrics are tested in
+        self.centre = 0.5 * (allc.min(axis=0) + allc.max(axis=0)) if len(allc) else np.zeros(3)
+        for j, node in hiding:
+            surf = node.surface
+            inv = node.transform.inverse()
+            wc = world[j]
             box = None
             if not isinstance(projector, CentralProjector) or np.all(projector.depth(wc) > 0):
                 pc = projector.project(wc)
                 box = (pc.min(axis=0), pc.max(axis=0))
             if isinstance(surf, Quadric) and surf.closed and box is not None:
-                A, b, d = quadric_coefficients_world(*surf.coefficients, inv.matrix, inv.offset)
+                A, b, d = quadric_coefficients_world(
+                    *surf.coefficients, inv.matrix, inv.offset + inv.matrix @ self.centre
+                )
                 size = float(np.linalg.norm(wc.max(axis=0) - wc.min(axis=0)))
                 quads.append((j, box, A, b, d, tol.SELF_HIT_RTOL * size))
             else:
                 self.items.append((j, surf, inv, box))
+        #: per asked surface, the nodes holding the same surface in the same place
+        #: (their points are its own points: the tie rule for surfaces that have
+        #: no implicit equation, such as a ParametricSurface added twice)
+        self.twins = {j: _twins(nodes, j) for j, _, _, _ in self.items}
         self._setup_grid(quads)
         #: relative cost of testing one point (1: the grouped quadric test)
         self.cost_per_point = 1.0 + sum(it[1].hit_cost for it in self.items)
@@ -130,11 +191,13 @@ class Occlusion:
         if self.nq:
             pt, q = self._quadric_pairs(xy)
             if len(pt) == len(xyz) and self.nq == 1:  # one quadric, every point in its box
-                o, v, sm, ow, kd = xyz, dirs, smax, owner, kind
+                o, v, sm, ow, kd = xyz - self.centre, dirs, smax, owner, kind
             else:
-                o, v, sm, ow, kd = xyz[pt], dirs[pt], smax[pt], owner[pt], kind[pt]
-            own = np.where(ow == self.q_node[q], kd, OFF).astype(np.int8)
-            h = quadric_ray_hits(o, v, sm, own, *self._coefficients(q))
+                o, v, sm = xyz[pt] - self.centre, dirs[pt], smax[pt]
+                ow, kd = owner[pt], kind[pt]
+            coef = self._coefficients(q)
+            own = np.where(self._owned(o, q, ow, kd, coef), kd, OFF).astype(np.int8)
+            h = quadric_ray_hits(o, v, sm, own, *coef)
             out[pt[h]] = True
             if cause is not None:
                 cause[pt[h]] = q[h]
@@ -156,11 +219,37 @@ class Occlusion:
                 idx = idx[(y >= y0 - pad) & (y <= y1 + pad)]
             if not len(idx):
                 continue
-            own = np.where(owner[idx] == j, kind[idx], OFF).astype(np.int8)
+            mine = np.isin(owner[idx], self.twins[j])
+            own = np.where(mine, kind[idx], OFF).astype(np.int8)
             o = inv.apply(xyz[idx])
+            tie = np.flatnonzero(~mine & (kind[idx] != OFF))
+            if len(tie):  # the tie rule: points lying on this surface count as its own
+                on = tie[_lies_on(surf, o[tie])]
+                own[on] = kind[idx[on]]
             v = inv.apply_vector(dirs[idx])
             out[idx] |= surf.hits(o, v, smax[idx], own)
         return out
+
+    def _owned(
+        self, o: np.ndarray, q: np.ndarray, owner: np.ndarray, kind: np.ndarray, coef: tuple
+    ) -> np.ndarray:
+        """Which (centred point, quadric) pairs count as the point's own surface:
+        its own node's, or one it lies on (the tie rule for coincident surfaces)."""
+        own = owner == self.q_node[q]
+        tie = ~own & (kind != OFF)
+        if not tie.any():
+            return own
+        A, b, d, _ = coef
+        i = np.flatnonzero(tie)
+        oi = o[i]
+        Ai = A[i] if A.ndim == 3 else A
+        Ax = np.einsum("...ij,...j->...i", Ai, oi) if Ai.ndim == 3 else oi @ Ai
+        xAx = np.einsum("ij,ij->i", oi, Ax)
+        bx = np.einsum("ij,ij->i", oi, b[i] if b.ndim == 2 else np.broadcast_to(b, oi.shape))
+        di = d[i] if np.ndim(d) else d
+        scale = np.abs(xAx) + np.abs(bx) + np.abs(di)
+        own[i] = np.abs(xAx + bx + di) <= tol.COINCIDENT_RTOL * scale
+        return own
 
     def _coefficients(self, q: np.ndarray) -> tuple:
         """``(A, b, d, eps)`` of quadrics ``q``: gathered per point, or the single
@@ -181,12 +270,14 @@ class Occlusion:
         (``disc >= 0`` and ``qb < 0``).  Used to locate flips by root finding.
         """
         dirs, _ = self.projector.rays(xyz)
-        A, b, d, _ = self._coefficients(q)  # per point, or one quadric's (broadcast)
+        xyz = xyz - self.centre
+        coef = self._coefficients(q)  # per point, or one quadric's (broadcast)
+        A, b, d, _ = coef
         Av = np.einsum("...ij,...j->...i", A, dirs) if A.ndim == 3 else dirs @ A
         qa = np.einsum("...i,...i", dirs, Av)
         qb = 2 * np.einsum("...i,...i", xyz, Av) + np.einsum("...i,...i", dirs, b)
         s_sum = -qb / qa  # r1 + r2
-        own = owner == self.q_node[q]
+        own = self._owned(xyz, q, owner, kind, coef)
         out = np.where(kind == CONTOUR, -1.0, s_sum)
         if own.all():
             return out

@@ -21,7 +21,7 @@ from .surfaces._base import OFF
 if TYPE_CHECKING:
     from .curves import CurveBatch
 
-__all__ = ["Part", "Samples", "merge", "refine"]
+__all__ = ["Part", "Samples", "check_points", "merge", "refine"]
 
 
 class Part(NamedTuple):
@@ -202,6 +202,28 @@ def refine(
         check = new[:-1] | new[1:]
 
 
+def check_points(n: int, abs_tol: float | None = None) -> None:
+    """Refuse, before any work, a sampling that would hold more than
+    ``MAX_POINTS`` points (the render's memory budget).
+
+    >>> check_points(10)
+    >>> check_points(10**9)
+    Traceback (most recent call last):
+    ...
+    ValueError: Scene.render: the curves need 1000000000 sample points; the limit is ...
+    """
+    if n > tol.MAX_POINTS:
+        why = (
+            "raise tolerance or draw fewer lines"
+            if abs_tol is not None
+            else "draw fewer lines (lower the counts of the families)"
+        )
+        raise ValueError(
+            f"Scene.render: the curves need {n} sample points; the limit is "
+            f"{tol.MAX_POINTS} (lgraph._tolerance.MAX_POINTS); {why}"
+        )
+
+
 def _predicted_deviation(xy: np.ndarray, cid: np.ndarray, t: np.ndarray) -> np.ndarray:
     """Deviation of every chord from its curve predicted by the second
     differences at its two ends (``|p[i-1] - 2 p[i] + p[i+1]| / 8`` across the
@@ -230,6 +252,7 @@ def _split(
     with np.errstate(invalid="ignore"):
         m = np.ceil(1.05 * np.sqrt(dev / abs_tol))
     m = np.clip(np.nan_to_num(m, nan=2.0), 2, tol.MAX_SPLIT).astype(np.int64)
+    check_points(len(s.t) + int(m.sum() - len(m)), abs_tol=abs_tol)
     after = np.repeat(idx, m - 1)
     j = np.arange(len(after)) - np.repeat(np.cumsum(m - 1) - (m - 1), m - 1) + 1
     frac = j / np.repeat(m, m - 1)
@@ -237,9 +260,4 @@ def _split(
     c = s.cid[after]
     xyz, uv, xy = s.evaluate(c, t, projector)
     new = merge(s, after, c, t, xyz, uv, xy)
-    if len(s.t) > tol.MAX_POINTS:
-        raise ValueError(
-            f"render: more than {tol.MAX_POINTS} points needed; lower the number of "
-            "lines or raise the tolerance"
-        )
     return new

@@ -11,6 +11,10 @@ from __future__ import annotations
 #: about 0.05 pt).
 CHORD_TOLERANCE = 1e-4
 
+#: Smallest chord tolerance accepted (1e-9 of the diagonal: far below a
+#: printer's resolution, far above double precision).
+MIN_CHORD_TOLERANCE = 1e-9
+
 #: Samples per curve before adaptive refinement starts.
 INITIAL_SAMPLES = 33
 
@@ -39,6 +43,11 @@ STEP_COST = 2000.0
 #: origin is the origin's own surface, not an occluder.
 SELF_HIT_RTOL = 1e-9
 
+#: A point this close to another quadric (relative to the quadric's size; in
+#: residual of its equation relative to the equation's terms) lies on it: the
+#: tie rule for coincident and touching surfaces.
+COINCIDENT_RTOL = 1e-9
+
 #: Relative step (of the parameter span) of the fourth-order central
 #: differences for first derivatives (errors near 1e-12).
 FD_STEP_1 = 1e-3
@@ -51,8 +60,17 @@ FD_STEP_2 = 2e-3
 MAX_CURVES = 100_000
 
 #: Largest number of sample points of one curve batch (and of the first
-#: sampling of a whole scene): about 1.5 GB of samples, far beyond any figure.
-MAX_POINTS = 20_000_000
+#: sampling of a whole scene), checked before each refinement pass: about
+#: 400 MB of samples, far beyond any figure (a gallery figure has < 200 000).
+MAX_POINTS = 4_000_000
+
+#: Rays tested together against a numeric surface (bounds the working memory).
+HIT_CHUNK_RAYS = 2048
+
+#: Most (ray, patch box) candidates of one chunk of rays against a numeric
+#: surface (about 100 per ray; a torus covered four times needs ~40): more
+#: means the surface winds over itself too often; refused, not computed.
+HIT_MAX_CANDIDATES = 200_000
 
 #: Grid samples per curve used to find where a curve leaves its drawn patch
 #: (a patch excursion shorter than 1/384 of the parameter range may be missed).
@@ -117,3 +135,13 @@ PARAMETER_LINES_RTOL = 1e-7
 #: stroke never are: they are crossings or tangencies, and removing them would
 #: split the stroke).
 DUPLICATE_MIN_END = 2.0
+
+# -- budgets of other operations (checked by lgraph._budget) -----------------
+#: Longest geodesic, in multiples of its surface's size (bounding-box diagonal).
+MAX_GEODESIC_TURNS = 1000
+#: Largest seed grid (per parameter) of intersection curves.
+MAX_INTERSECTION_GRID = 1000
+#: Most marching steps of one intersection curve (the step's lower limit).
+MAX_MARCH_STEPS = 200_000
+#: Most frames of an animation or orbit.
+MAX_FRAMES = 3600

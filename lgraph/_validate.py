@@ -33,6 +33,18 @@ def finite_positive(owner: str) -> Validator:
     return check
 
 
+def at_most(owner: str, limit: float, why: str) -> Validator:
+    """Validator: a number no larger than ``limit`` (``why`` says what breaks beyond)."""
+
+    def check(_inst: Any, attribute: Any, value: Any) -> None:
+        if _is_real(value) and value > limit:
+            raise ValueError(
+                f"{owner}: {attribute.name} must be at most {limit:g} ({why}), got {value!r}"
+            )
+
+    return check
+
+
 def nonnegative_finite(owner: str) -> Validator:
     """Validator: a finite real number >= 0."""
 

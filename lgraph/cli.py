@@ -1,13 +1,25 @@
-"""Command line: ``lgraph demo | render | gallery | plugins``."""
+"""Command line: ``lgraph demo | render | gallery | plugins``.
+
+Input errors (a bad scene file, option, output path, ...) are found before
+any rendering where they can be; they exit with status 2 and one message
+``lgraph <command>: error: ...`` on stderr, no traceback (``--debug`` shows
+it).  An unexpected failure exits with status 1, also without a traceback
+unless ``--debug``.
+"""
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-__all__ = ["main", "demo_scene"]
+__all__ = ["main", "demo_scene", "build_parser"]
+
+
+class InputError(Exception):
+    """A problem with what the user gave (exit status 2)."""
 
 
 def demo_scene():  # noqa: ANN201
@@ -20,8 +32,39 @@ def demo_scene():  # noqa: ANN201
     return scene.render(lg.CentralProjector.from_angles(35, 25, 16))
 
 
+def _output_folder(folder: Path) -> Path:
+    """Create ``folder`` if missing; refuse one that is a file or not writable."""
+    if folder.exists() and not folder.is_dir():
+        raise InputError(f"{str(folder)!r} is not a folder")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise InputError(f"cannot create the folder {str(folder)!r}: {e.strerror or e}") from None
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise InputError(f"the folder {str(folder)!r} is not writable")
+    return folder
+
+
+def check_output(path: str | os.PathLike[str]) -> Path:
+    """Check an output file before any work: a known suffix (a backend for
+    it), not a folder, its folder existing (created if missing) and
+    writable.  Raises :class:`InputError`."""
+    from .backends import get_backend
+    from .plugins import PluginError
+
+    out = Path(path)
+    try:
+        get_backend(out.suffix)
+    except (ValueError, PluginError) as e:
+        raise InputError(str(e).splitlines()[0].replace("Drawing.save: ", "")) from None
+    if out.is_dir():
+        raise InputError(f"output {str(out)!r} is a folder; give a file name")
+    _output_folder(out.parent if str(out.parent) else Path("."))
+    return out
+
+
 def _demo(args: argparse.Namespace) -> int:
-    out = Path(args.outdir)
+    out = _output_folder(Path(args.outdir))
     drawing = demo_scene()
     for suffix in (".pdf", ".png"):
         path = drawing.save(out / f"lgraph-demo{suffix}")
@@ -32,13 +75,20 @@ def _demo(args: argparse.Namespace) -> int:
 def _render(args: argparse.Namespace) -> int:
     from .scenefile import SceneFileError, load_scene_file
 
+    out = check_output(args.output or Path(args.scene).with_suffix(".pdf"))
+    for name in ("width", "height"):  # physical sizes: checked before rendering
+        if getattr(args, name, None) is not None:
+            from .units import length_pt
+
+            try:
+                length_pt(getattr(args, name), name)
+            except ValueError as e:
+                raise InputError(f"--{name}: {e}") from None
     try:
-        scene, projector, options = load_scene_file(args.scene)
+        scene, projector, options = load_scene_file(args.scene, output=out)
     except SceneFileError as e:
-        print(f"lgraph render: {e}", file=sys.stderr)
-        return 2
+        raise InputError(str(e)) from None
     drawing = scene.render(projector, **options.get("render", {}))
-    out = args.output or str(Path(args.scene).with_suffix(".pdf"))
     save = dict(options.get("save", {}))
     for name in ("width", "height"):  # the command line wins over the scene file
         if getattr(args, name, None) is not None:
@@ -63,20 +113,47 @@ def _plugins(args: argparse.Namespace) -> int:
     return 0
 
 
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {value}")
+    return value
+
+
+def _suffixes() -> str:
+    try:
+        from .backends import backend_suffixes
+
+        return ", ".join(backend_suffixes())
+    except Exception:  # noqa: BLE001 - help must print whatever a plugin does
+        return ".pdf, .png, .svg"
+
+
 def build_parser() -> argparse.ArgumentParser:
+    from . import __version__
+
     p = argparse.ArgumentParser(
         prog="lgraph",
         description="Print-quality line graphics of mathematical surfaces "
         "with exact hidden-line removal.",
     )
+    p.add_argument("--version", action="version", version=f"lgraph {__version__}")
+    p.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     d = sub.add_parser("demo", help="write lgraph-demo.pdf and lgraph-demo.png")
-    d.add_argument("outdir", nargs="?", default=".", help="folder to write into (default: .)")
+    d.add_argument(
+        "outdir", nargs="?", default=".", help="folder to write into (created if missing)"
+    )
     d.set_defaults(func=_demo)
     r = sub.add_parser("render", help="render a TOML scene file")
     r.add_argument("scene", help="scene file (.toml)")
     r.add_argument(
-        "-o", "--output", help="output file (.pdf, .png, .svg); default: scene name .pdf"
+        "-o",
+        "--output",
+        help=f"output file, by suffix: {_suffixes()}; default: the scene's name with .pdf",
     )
     r.add_argument("--width", help="figure width, e.g. 8.5cm, 85mm, 3.3in, 240pt")
     r.add_argument("--height", help="figure height (with --width: fit inside, aspect kept)")
@@ -89,7 +166,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.set_defaults(func=_render)
     g = sub.add_parser("gallery", help="build every gallery figure (PDF + PNG) and index.html")
     g.add_argument("outdir", help="output folder (created if missing)")
-    g.add_argument("-j", "--jobs", type=int, default=None, help="worker processes")
+    g.add_argument("-j", "--jobs", type=_positive_int, default=None, help="worker processes")
     g.add_argument(
         "--only", nargs="*", default=None, help="only figures whose name contains one of these"
     )
@@ -100,6 +177,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status (0 ok, 1 failure, 2 bad input)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
@@ -107,10 +185,27 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     from .plugins import PluginError
 
+    prefix = f"lgraph {args.command}: error:"
     try:
         return int(args.func(args) or 0)
-    except (ValueError, TypeError, OSError, NotImplementedError, PluginError) as e:
-        print(f"lgraph {args.command}: error: {e}", file=sys.stderr)
+    except KeyboardInterrupt:
+        print(f"lgraph {args.command}: interrupted", file=sys.stderr)
+        return 130
+    except (InputError, ValueError, TypeError, PluginError, OSError, NotImplementedError) as e:
+        if args.debug:
+            raise
+        text = str(e) or type(e).__name__
+        if isinstance(e, OSError) and not isinstance(e, FileNotFoundError) and e.filename:
+            text = f"{e.strerror or e}: {e.filename}"
+        print(f"{prefix} {text}", file=sys.stderr)
+        return 2
+    except Exception as e:  # noqa: BLE001 - no traceback for the user without --debug
+        if args.debug:
+            raise
+        print(
+            f"{prefix} unexpected {type(e).__name__}: {e} (run with --debug for details)",
+            file=sys.stderr,
+        )
         return 1
 
 

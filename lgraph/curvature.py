@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from ._budget import check_parameters
 from ._tolerance import ASYMPTOTIC_RTOL, FIELD_RTOL, PARABOLIC_STOP, UMBILIC_STOP
 
 __all__ = [
@@ -35,6 +36,7 @@ def fundamental_forms(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
 
 def principal_curvatures(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
     """Principal curvatures ``k1 <= k2`` from the fundamental forms."""
+    check_parameters("principal_curvatures", surface, u1, u2)
     g11, g12, g22, L11, L12, L22 = fundamental_forms(surface, u1, u2)
     g = g11 * g22 - g12 * g12
     H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
@@ -61,6 +63,7 @@ def principal_directions(surface: Any, u1: Any, u2: Any) -> tuple[np.ndarray, np
     At umbilics the directions are arbitrary (returned as NaN-free vectors of
     the parameter directions).
     """
+    check_parameters("principal_directions", surface, u1, u2)
     g11, g12, g22, L11, L12, L22 = fundamental_forms(surface, u1, u2)
     k1, k2 = principal_curvatures(surface, u1, u2)
     x1, x2 = surface.derivatives(u1, u2)

@@ -17,8 +17,11 @@ from __future__ import annotations
 
 import math
 import os
+import signal
 import tempfile
+import threading
 from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -127,7 +130,7 @@ class Stroke:
     xyz : (n, 3) array
         World coordinates of the same points.
     uv : (n, 2) array or None
-        Parameters of the points on :attr:`surface`; None for free curves.
+        Parameters of the points on :attr:`!surface`; None for free curves.
     visible : bool
         False only for hidden parts (present when rendering with ``hidden_lines=True``).
     family : str
@@ -159,7 +162,7 @@ class PlacedLabel:
     text : str
         The text (``$...$`` is TeX mathematics).
     xy : (2,) array
-        Projected coordinates of the anchor (the space of :attr:`Stroke.xy`).
+        Projected coordinates of the anchor (the space of :attr:`!Stroke.xy`).
     xyz : (3,) array
         World coordinates of the anchor.
     visible : bool
@@ -360,7 +363,7 @@ class Drawing:
         return out
 
     def label_boxes(self) -> np.ndarray:
-        """``(n, 4)`` ink boxes ``x0, y0, x1, y1`` of :attr:`labels` on the page (pt, y up)."""
+        """``(n, 4)`` ink boxes ``x0, y0, x1, y1`` of :attr:`!labels` on the page (pt, y up)."""
         scale, offset, _, _ = self._layout()
         out = np.empty((len(self.labels), 4))
         for i, lab in enumerate(self.labels):
@@ -396,7 +399,7 @@ class Drawing:
         """This drawing on a page cropped to the figure, scaled to a physical size.
 
         ``width`` and ``height`` are lengths (``"8.5cm"``, ``"60mm"``,
-        ``"3in"``, ``"200pt"`` or a number of pt, see :func:`lgraph.units.length_pt`).
+        ``"3in"``, ``"200pt"`` or a number of pt, see :func:`!lgraph.units.length_pt`).
         With one of them the page has exactly that width (height); with both the
         figure keeps its aspect and fits inside ``width`` x ``height``.  Line
         widths and label sizes stay in pt.
@@ -484,6 +487,10 @@ class Drawing:
         """
         from .backends import get_backend
 
+        if not isinstance(path, (str, os.PathLike)):
+            raise TypeError(
+                f"Drawing.save: path must be a file name (str or path), got {type(path).__name__}"
+            )
         path = Path(path)
         writer = get_backend(path.suffix)
         drawing = self.sized(width, height)
@@ -493,22 +500,65 @@ class Drawing:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=parent)
         os.close(fd)
         try:
-            writer(drawing, Path(tmp), **options)
-            os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files
-            os.replace(tmp, path)
-        except BaseException:
+            with _removed_on_signals(tmp):
+                writer(drawing, Path(tmp), **options)
+                os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files
+                os.replace(tmp, path)
+        except BaseException as exc:
             try:
                 os.unlink(tmp)
             except OSError:
                 pass
+            if isinstance(exc, OSError) and exc.filename in (tmp, Path(tmp)):
+                # name the file the user asked for, not the temporary one
+                raise type(exc)(exc.errno, exc.strerror, str(path)) from None
             raise
         return path
+
+
+@contextmanager
+def _removed_on_signals(tmp: str) -> Iterator[None]:
+    """While writing ``tmp``: a SIGTERM or SIGHUP first removes it, then takes
+    its usual course (the previous handler, or the default action, which ends
+    the process).  Only in the main thread (where signal handlers live)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    signums = [getattr(signal, n) for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
+    previous: dict[int, Any] = {}
+
+    def handler(signum: int, frame: Any) -> None:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        prev = previous.get(signum, signal.SIG_DFL)
+        signal.signal(signum, prev)
+        if callable(prev):
+            prev(signum, frame)
+        elif prev != signal.SIG_IGN:
+            os.kill(os.getpid(), signum)  # the default action, now that tmp is gone
+
+    try:
+        for sig in signums:
+            previous[sig] = signal.signal(sig, handler)
+    except (ValueError, OSError):  # pragma: no cover - signals unavailable here
+        pass
+    try:
+        yield
+    finally:
+        for sig, prev in previous.items():
+            signal.signal(sig, prev if prev is not None else signal.SIG_DFL)
 
 
 def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+#: Most dashes :func:`dash_polyline` makes of one polyline (memory budget).
+MAX_DASHES = 1_000_000
 
 
 def dash_polyline(points: np.ndarray, pattern: Sequence[float]) -> list[np.ndarray]:
@@ -541,6 +591,12 @@ def dash_polyline(points: np.ndarray, pattern: Sequence[float]) -> list[np.ndarr
     on = pat[0::2]
     offsets = np.concatenate([[0.0], np.cumsum(pat)[1:-1:2]])
     n_periods = int(np.ceil(total / period)) + 1
+    if n_periods * len(on) > MAX_DASHES:
+        raise ValueError(
+            f"dash_polyline: pattern {tuple(pat.tolist())} gives {n_periods * len(on)} dashes "
+            f"along a polyline of length {total:g}; the limit is {MAX_DASHES} "
+            "(lengthen the pattern)"
+        )
     starts = (np.arange(n_periods)[:, None] * period + offsets[None, :]).ravel()
     ends = starts + np.tile(on, n_periods)
     keep = starts < total

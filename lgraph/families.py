@@ -120,7 +120,7 @@ class LinesOfCurvature(Family):
 
     Each surface class supplies its closed forms through
     ``surface.lines_of_curvature(n1, n2)``; other surfaces integrate the
-    principal directions (:mod:`lgraph.fieldlines`).  Numeric lines are
+    principal directions (:mod:`!lgraph.fieldlines`).  Numeric lines are
     complete (``spacing="complete"``, the default: each runs to the patch
     boundary, a pole or an umbilic, or closes) or trimmed where they come
     close to another line of their family (``spacing="even"``, evenly spaced

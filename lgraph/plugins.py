@@ -366,13 +366,17 @@ class _LazyBackend:
         self.info = info
         self.__name__ = info.value.rpartition(":")[2] or info.name
 
-    def __call__(self, drawing: Any, path: Any, **options: Any) -> Any:
+    def load_writer(self) -> Any:
+        """Import the plugin's writer (and register it in place of this stub)."""
         from .backends import _BACKENDS
 
         writer = self.info.load()
         if not isinstance(writer, _BrokenPlugin) and _BACKENDS.get(self.suffix) is self:
             _BACKENDS[self.suffix] = writer
-        return writer(drawing, path, **options)
+        return writer
+
+    def __call__(self, drawing: Any, path: Any, **options: Any) -> Any:
+        return self.load_writer()(drawing, path, **options)
 
     def __repr__(self) -> str:
         return f"<lgraph backend {self.suffix} from {self.info.origin}, loaded on first use>"

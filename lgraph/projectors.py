@@ -18,7 +18,7 @@ from typing import Any
 import attrs
 import numpy as np
 
-from ._validate import vector3
+from ._validate import as_number, vector3
 from .geometry.vectors import cross3
 
 __all__ = ["Projector", "ParallelProjector", "CentralProjector"]
@@ -26,8 +26,12 @@ __all__ = ["Projector", "ParallelProjector", "CentralProjector"]
 
 def _frame(toward_viewer: np.ndarray, up: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Orthonormal (right, up, toward viewer) frame; ``up`` need not be orthogonal."""
-    e3 = toward_viewer / np.linalg.norm(toward_viewer)
-    u = up / np.linalg.norm(up)
+    # scale by the largest component first: no underflow or overflow for
+    # directions like (1e-320, 0, 0) or (1e300, 1e300, 0)
+    e3 = toward_viewer / np.abs(toward_viewer).max()
+    e3 /= np.linalg.norm(e3)
+    u = up / np.abs(up).max()
+    u /= np.linalg.norm(u)
     if abs(float(u @ e3)) > 1 - 1e-9:  # looking along the up vector: pick another
         u = np.array([0.0, 1.0, 0.0]) if abs(e3[1]) < 0.9 else np.array([1.0, 0.0, 0.0])
     e1 = cross3(u, e3)
@@ -37,8 +41,9 @@ def _frame(toward_viewer: np.ndarray, up: np.ndarray) -> tuple[np.ndarray, np.nd
 
 
 def _direction_from_angles(azimuth: float, elevation: float) -> np.ndarray:
+    azimuth, elevation = as_number(azimuth), as_number(elevation)
     for name, v in (("azimuth", azimuth), ("elevation", elevation)):
-        if not (isinstance(v, (int, float)) and math.isfinite(v)):
+        if not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)):
             raise ValueError(f"Projector: {name} must be a finite number of degrees, got {v!r}")
     if not -90 <= elevation <= 90:
         raise ValueError(f"Projector: elevation must lie in [-90, 90] degrees, got {elevation!r}")
@@ -165,7 +170,13 @@ class CentralProjector(Projector):
     ) -> CentralProjector:
         """Eye at ``distance`` from ``target`` in the direction given by
         ``azimuth`` and ``elevation`` (degrees)."""
-        if not (isinstance(distance, (int, float)) and math.isfinite(distance) and distance > 0):
+        distance = as_number(distance)
+        if not (
+            isinstance(distance, (int, float))
+            and not isinstance(distance, bool)
+            and math.isfinite(distance)
+            and distance > 0
+        ):
             raise ValueError(
                 f"CentralProjector: distance must be a positive finite number, got {distance!r}"
             )

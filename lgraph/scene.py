@@ -193,6 +193,9 @@ class Scene:
                     "Scene.add: families must be line families such as lg.ParameterLines(8, 16), "
                     f"got {type(f).__name__}"
                 )
+        for flag, value in (("contour", contour), ("hides", hides)):
+            if not isinstance(value, bool):
+                raise TypeError(f"Scene.add: {flag} must be True or False, got {value!r}")
         if isinstance(item, Surface) and not families:
             families = tuple(FAMILIES[name]() for name in item.default_families)
         node = Node(item, tuple(families), transform, style, contour, hides)

@@ -4,11 +4,13 @@ Nothing in a scene file is ever evaluated as Python: surfaces and families
 are looked up by registry name (:mod:`lgraph.plugins`), parameters must be
 plain numbers (a string where a number is expected is an error, whatever it
 contains), and every value is checked before anything is built.  The whole
-file is validated before :func:`load_scene_file` returns, so a partially
-valid file renders nothing.  Errors are :class:`SceneFileError` with one line
-naming the file, the line and the key::
+file is validated before :func:`~lgraph.load_scene_file` returns, so a partially
+valid file renders nothing.  Every problem of a file is reported at once:
+:class:`SceneFileError` has one line per problem naming the file, the line
+and the key::
 
     scene.toml:9: object[0].params.a: expected a number, got a string '...'
+    scene.toml:14: save.dpi: unknown option 'dpi' for .pdf output; allowed: ...
 
 The format::
 
@@ -26,8 +28,9 @@ The format::
     tolerance = 1e-4
     hidden_style = { color = "#808080", width = 0.3, dash = [2, 1.5] }
 
-    [save]                       # optional: keyword arguments of Drawing.save (e.g. dpi)
-    dpi = 200
+    [save]                       # optional: options of the backend chosen by the output
+    title = "Ellipsoid"          # suffix (.pdf: compress, precision, title; .png: dpi,
+                                 # size, supersample; .svg: precision; plugins: their own)
 
     [save]                       # physical size of the figure (any format): pt, mm, cm, in
     width = "8.5cm"              # and/or height = "6cm" (both: fit inside, aspect kept)
@@ -58,8 +61,44 @@ The format::
     surface = "sphere"           # (groups nest to any depth)
     params = { r = 1 }
 
-TOML is read with :mod:`tomllib` (Python >= 3.11); on Python 3.10 the
-``tomli`` package, if installed, is used instead.
+Every table and key:
+
+==============  ========================================================================
+table           keys
+==============  ========================================================================
+``projector``   ``kind`` (``"parallel"`` or ``"central"``, required); parallel:
+                ``direction`` (3 numbers, toward the viewer) or ``azimuth`` and
+                ``elevation`` (degrees), ``up`` (with ``direction``); central: ``eye``
+                and ``target`` (3 numbers each) or ``azimuth``, ``elevation`` and
+                ``distance``, ``up`` (with ``eye``).  Required.
+``page``        ``preset`` (``"a4"``, ``"a5"``, ``"letter"``) with ``landscape`` and
+                ``margin``; or ``width`` and ``height`` (pt, both), ``margin``,
+                ``extent``.  Optional: the default crops the page to the figure.
+``render``      ``hidden_lines`` (bool), ``tolerance`` (1e-9 to 0.1 of the figure's
+                diagonal), ``hidden_style`` (a style table).  Optional.
+``save``        ``width``, ``height`` (a physical size such as ``"8.5cm"``, any format)
+                and the options of the output's backend (see
+                :func:`lgraph.backends.backend_options`).  Optional.
+``[[object]]``  ``surface`` (a registry name, ``lgraph plugins`` lists them, required),
+                ``params`` (the surface's parameters by name: numbers or arrays of
+                numbers), ``families`` (names, or tables with ``name`` and the
+                family's parameters; default ``["parameter_lines"]``), ``transform``
+                (an array of ``{ translate = [x, y, z] }``, ``{ rotate = { axis =
+                "x" | "y" | "z" | [x, y, z], degrees = d } }``, ``{ scale = s | [sx,
+                sy, sz] }``), ``style`` (a style table, or one per family name with
+                ``default`` for the rest), ``contour`` and ``hides`` (bools).
+``[[labels]]``  ``text`` and ``at`` (required), ``offset``, ``anchor``, ``size``,
+                ``color``, ``always``.
+``[[points]]``  ``at`` (required), ``size``, ``color``, ``always``.
+``[[group]]``   ``transform``, ``style`` and members: ``object``, ``labels``,
+                ``points`` and ``group`` tables (nested to any depth).
+style table     ``color`` (``"#rrggbb"``, a name or 3 numbers in [0, 1]), ``width``
+                (pt), ``dash`` (an array of on/off lengths in pt).
+==============  ========================================================================
+
+TOML is read with :mod:`!tomllib` (Python >= 3.11); on Python 3.10 with the
+``tomli`` package (a dependency of lgraph there).  The file is UTF-8, with or
+without a byte-order mark.
 
 >>> import tempfile, os
 >>> text = '''
@@ -98,23 +137,55 @@ Key = tuple[str | int, ...]
 
 
 class SceneFileError(Exception):
-    """A scene file that cannot be rendered; the message is one line:
-    ``file:line: key: what is wrong``."""
+    """A scene file that cannot be rendered; the message has one line per
+    problem, ``file:line: key: what is wrong``.  ``path``, ``line`` and
+    ``key`` are those of the first problem; ``errors`` lists every problem as
+    ``(line, key, message)``."""
 
-    def __init__(self, message: str, *, path: str = "", line: int | None = None, key: str = ""):
+    def __init__(
+        self,
+        message: str,
+        *,
+        path: str = "",
+        line: int | None = None,
+        key: str = "",
+        errors: list[tuple[int | None, str, str]] | None = None,
+    ):
         super().__init__(message)
         self.path = path
         self.line = line
         self.key = key
+        self.errors = errors if errors is not None else [(line, key, message)]
 
 
 class _Invalid(Exception):
-    """Raised during validation; turned into SceneFileError with a location."""
+    """Raised during validation; turned into SceneFileError with a location.
+    ``more`` holds further problems found in the same file."""
 
-    def __init__(self, key: Key, message: str) -> None:
+    def __init__(self, key: Key, message: str, more: list[_Invalid] | None = None) -> None:
         super().__init__(message)
         self.key = key
         self.message = message
+        self.more = more or []
+
+
+class _Collect:
+    """Runs independent checks and keeps every problem instead of the first."""
+
+    def __init__(self) -> None:
+        self.errors: list[_Invalid] = []
+
+    def __call__(self, func: Callable[..., Any], *args: Any, default: Any = None) -> Any:
+        try:
+            return func(*args)
+        except _Invalid as exc:
+            self.errors.extend([exc, *exc.more])
+            return default
+
+    def raise_all(self) -> None:
+        if self.errors:
+            first, *rest = self.errors
+            raise _Invalid(first.key, first.message, rest)
 
 
 # -- locating keys in the file text ----------------------------------------------------
@@ -400,26 +471,37 @@ _TOP = ("projector", "object", "labels", "points", "group", "page", "render", "s
 _MEMBERS = ("object", "labels", "points", "group")
 
 
-def parse_scene(data: Mapping[str, Any]) -> tuple[Any, Any, dict[str, Any]]:
+def parse_scene(data: Mapping[str, Any], suffix: str = ".pdf") -> tuple[Any, Any, dict[str, Any]]:
     """Build ``(scene, projector, options)`` from parsed TOML ``data``.
 
-    Raises ``_Invalid`` (with the offending key) on the first problem; nothing
-    is rendered here.
+    ``suffix`` is that of the output file: ``[save]`` keys are checked
+    against the options of its backend.  Raises ``_Invalid`` (with the
+    offending key, and every further problem in ``more``) when anything is
+    wrong; nothing is rendered here.
     """
 
-    _only((), data, _TOP)
-    projector = _projector(("projector",), _required((), data, "projector"))
+    check = _Collect()
+    check(_only, (), data, _TOP)
+    projector = check(lambda: _projector(("projector",), _required((), data, "projector")))
     if not any(k in data for k in _MEMBERS):
-        _required((), data, "object")
-    scene = _members((), data)
+        check(_required, (), data, "object")
+    scene = _members((), data, check)
     render: dict[str, Any] = {}
     if "render" in data:
-        render = _render(("render",), _table(("render",), data["render"]))
+        render = check(
+            lambda: _render(("render",), _table(("render",), data["render"])), default={}
+        )
     if "page" in data:
-        render["page"] = _page(("page",), _table(("page",), data["page"]))
+        page = check(lambda: _page(("page",), _table(("page",), data["page"])))
+        if page is not None:
+            render["page"] = page
+    if projector is not None:
+        for k, node in enumerate(scene):
+            check(_in_front, ("projector",), projector, node, k)
     save: dict[str, Any] = {}
     if "save" in data:
-        save = _save(("save",), _table(("save",), data["save"]))
+        save = check(lambda: _save(("save",), _table(("save",), data["save"]), suffix), default={})
+    check.raise_all()
     return scene, projector, {"render": render, "save": save}
 
 
@@ -429,37 +511,56 @@ def _array_of_tables(key: Key, v: Any, name: str) -> list[dict[str, Any]]:
     return [_table(key + (k,), t) for k, t in enumerate(v)]
 
 
-def _members(key: Key, table: Mapping[str, Any]) -> Any:
-    """A scene of the ``object``, ``labels``, ``points`` and ``group`` tables in ``table``."""
+def _members(key: Key, table: Mapping[str, Any], check: _Collect | None = None) -> Any:
+    """A scene of the ``object``, ``labels``, ``points`` and ``group`` tables in
+    ``table``; with ``check``, every problem is recorded there and the members
+    that are fine are built (otherwise the first problem is raised)."""
     import lgraph as lg
 
+    own = check is None
+    check = _Collect() if check is None else check
     scene = lg.Scene()
     objects = (
-        _array_of_tables(key + ("object",), table["object"], "object") if "object" in table else []
+        check(_array_of_tables, key + ("object",), table["object"], "object", default=[])
+        if "object" in table
+        else []
     )
     for k, obj in enumerate(objects):
-        item, families, kw = _object(key + ("object", k), obj)
+        ok = key + ("object", k)
+        built = check(_object, ok, obj, check)
+        if built is None:
+            continue
+        item, families, kw = built
         try:
             scene.add(item, *families, **kw)
         except (TypeError, ValueError) as exc:
-            raise _Invalid(key + ("object", k), str(exc)) from None
+            check(_fail, ok, str(exc))
     for name, build in (("labels", _label), ("points", _point)):
         if name in table:
-            for k, t in enumerate(_array_of_tables(key + (name,), table[name], name)):
-                scene.add(build(key + (name, k), t))
+            tables = check(_array_of_tables, key + (name,), table[name], name, default=[])
+            for k, t in enumerate(tables):
+                member = check(build, key + (name, k), t)
+                if member is not None:
+                    scene.add(member)
     if "group" in table:
-        for k, g in enumerate(_array_of_tables(key + ("group",), table["group"], "group")):
-            gk = key + ("group", k)
-            _only(gk, g, ("transform", "style") + _MEMBERS)
-            if not any(m in g for m in _MEMBERS):
-                raise _Invalid(gk, "a group needs members: object, labels, points or group tables")
-            kw: dict[str, Any] = {}
-            if "transform" in g:
-                kw["transform"] = _transform(gk + ("transform",), g["transform"])
-            if "style" in g:
-                kw["style"] = _styles(gk + ("style",), g["style"])
-            scene.add(_members(gk, g), **kw)
+        groups = check(_array_of_tables, key + ("group",), table["group"], "group", default=[])
+        for k, g in enumerate(groups):
+            check(_group, key + ("group", k), g, scene, check)
+    if own:
+        check.raise_all()
     return scene
+
+
+def _group(gk: Key, g: dict[str, Any], scene: Any, check: _Collect) -> None:
+    _only(gk, g, ("transform", "style") + _MEMBERS)
+    if not any(m in g for m in _MEMBERS):
+        raise _Invalid(gk, "a group needs members: object, labels, points or group tables")
+    kw: dict[str, Any] = {}
+    if "transform" in g:
+        kw["transform"] = _transform(gk + ("transform",), g["transform"])
+    if "style" in g:
+        kw["style"] = _styles(gk + ("style",), g["style"])
+    scene.add(_members(gk, g, check), **kw)
 
 
 _LABEL = ("text", "at", "offset", "anchor", "size", "color", "always")
@@ -512,6 +613,35 @@ def _color_value(key: Key, v: Any) -> Any:
     raise _Invalid(key, f"expected a colour '#rrggbb', a name or [r, g, b], got {_show(v)}")
 
 
+def _fail(key: Key, message: str) -> None:
+    raise _Invalid(key, message)
+
+
+def _in_front(key: Key, projector: Any, node: Any, k: int) -> None:
+    """A central projector's eye must see every object in front of it: checked
+    on a 17 x 17 grid of each surface before any rendering (the renderer
+    checks every sample again)."""
+    import numpy as np
+
+    import lgraph as lg
+
+    surface = node.surface
+    if not isinstance(projector, lg.CentralProjector) or surface is None:
+        return
+    d = surface.domain
+    g = [np.linspace(*d.range(i), 17) for i in (0, 1)]
+    u1, u2 = np.meshgrid(*g, indexing="ij")
+    with np.errstate(all="ignore"):
+        x = node.transform.apply(np.asarray(surface.point(u1, u2), float).reshape(-1, 3))
+    x = x[np.isfinite(x).all(axis=1)]
+    if len(x) and (projector.depth(x) <= 0).any():
+        raise _Invalid(
+            key + ("eye",),
+            f"object[{k}] ({surface!r}) lies partly at or behind the eye "
+            f"{projector.eye.tolist()}; move the eye farther away",
+        )
+
+
 def _projector(key: Key, p: Any) -> Any:
     import lgraph as lg
 
@@ -560,10 +690,14 @@ def _projector(key: Key, p: Any) -> Any:
 _OBJECT = ("surface", "params", "families", "transform", "style", "contour", "hides")
 
 
-def _object(key: Key, obj: dict[str, Any]) -> tuple[Any, list[Any], dict[str, Any]]:
+def _object(
+    key: Key, obj: dict[str, Any], check: _Collect
+) -> tuple[Any, list[Any], dict[str, Any]] | None:
+    """One ``[[object]]``: its surface, then its families, transform, style and
+    flags, each checked on its own (all their problems are reported)."""
     from .plugins import get_surface
 
-    _only(key, obj, _OBJECT)
+    check(_only, key, obj, _OBJECT)
     name = _string(key + ("surface",), _required(key, obj, "surface"))
     try:
         cls = get_surface(name)
@@ -575,17 +709,20 @@ def _object(key: Key, obj: dict[str, Any]) -> tuple[Any, list[Any], dict[str, An
     families = []
     fams = obj.get("families", ["parameter_lines"])
     if not isinstance(fams, list):
-        raise _Invalid(key + ("families",), f"expected an array of families, got {_show(fams)}")
+        check(_fail, key + ("families",), f"expected an array of families, got {_show(fams)}")
+        fams = []
     for k, f in enumerate(fams):
-        families.append(_family(key + ("families", k), f, surface))
+        families.append(check(_family, key + ("families", k), f, surface))
     kw: dict[str, Any] = {}
     if "transform" in obj:
-        kw["transform"] = _transform(key + ("transform",), obj["transform"])
+        kw["transform"] = check(_transform, key + ("transform",), obj["transform"])
     if "style" in obj:
-        kw["style"] = _styles(key + ("style",), obj["style"])
+        kw["style"] = check(_styles, key + ("style",), obj["style"])
     for flag in ("contour", "hides"):
         if flag in obj:
-            kw[flag] = _boolean(key + (flag,), obj[flag])
+            kw[flag] = check(_boolean, key + (flag,), obj[flag])
+    if any(f is None for f in families) or any(v is None for v in kw.values()):
+        return None  # the problems are recorded already
     return surface, families, kw
 
 
@@ -763,10 +900,14 @@ def _render(key: Key, r: dict[str, Any]) -> dict[str, Any]:
     if "hidden_lines" in r:
         out["hidden_lines"] = _boolean(key + ("hidden_lines",), r["hidden_lines"])
     if "tolerance" in r:
+        from ._tolerance import MIN_CHORD_TOLERANCE
+
         tol = _number(key + ("tolerance",), r["tolerance"], positive=True)
-        if tol >= 0.1:
+        if not MIN_CHORD_TOLERANCE <= tol <= 0.1:
             raise _Invalid(
-                key + ("tolerance",), f"expected a small fraction like 1e-4, got {tol!r}"
+                key + ("tolerance",),
+                f"expected a fraction of the figure's diagonal from {MIN_CHORD_TOLERANCE:g} "
+                f"to 0.1 (like 1e-4), got {tol!r}",
             )
         out["tolerance"] = tol
     if "hidden_style" in r:
@@ -800,12 +941,11 @@ def _page(key: Key, p: dict[str, Any]) -> Any:
     return _call(key, "page", Page, kw)
 
 
-#: options of Drawing.save known to the built-in backends, with their checks
+#: extra checks of options of the built-in backends (the backend checks again)
 _SAVE: dict[str, Callable[[Key, Any], Any]] = {
     "dpi": lambda k, v: _number(k, v, positive=True),
-    "supersample": lambda k, v: _int(k, v, 1, 16),
+    "supersample": lambda k, v: _int(k, v, 1, 8),
     "precision": lambda k, v: _int(k, v, 0, 6),
-    "compress": _boolean,
     "title": lambda k, v: _string(k, v),
     "width": lambda k, v: _length(k, v),
     "height": lambda k, v: _length(k, v),
@@ -823,15 +963,55 @@ def _length(key: Key, v: Any) -> float:
         raise _Invalid(key, str(exc)) from None
 
 
+#: options of Drawing.save itself, for every format
+_DRAWING_SAVE = ("width", "height")
+
+
 def _int(key: Key, v: Any, lo: int, hi: int) -> int:
     if not (isinstance(v, int) and not isinstance(v, bool) and lo <= v <= hi):
         raise _Invalid(key, f"expected an integer from {lo} to {hi}, got {_show(v)}")
     return v
 
 
-def _save(key: Key, s: dict[str, Any]) -> dict[str, Any]:
-    _only(key, s, tuple(_SAVE))
-    return {k: _SAVE[k](key + (k,), v) for k, v in s.items()}
+def _typed(key: Key, v: Any, default: Any) -> Any:
+    """Check a backend option against the type of its default."""
+    if isinstance(default, bool):
+        return _boolean(key, v)
+    if isinstance(default, int):
+        if not (isinstance(v, int) and not isinstance(v, bool)):
+            raise _Invalid(key, f"expected an integer, got {_show(v)}")
+        return v
+    if isinstance(default, float):
+        return _number(key, v)
+    if isinstance(default, str):
+        return _string(key, v)
+    return v
+
+
+def _save(key: Key, s: dict[str, Any], suffix: str = ".pdf") -> dict[str, Any]:
+    """``[save]``: options of the backend that writes ``suffix`` files
+    (:func:`lgraph.backends.backend_options`; plugin backends included)."""
+    from .backends import backend_options
+    from .plugins import PluginError
+
+    try:
+        known = backend_options(suffix)
+    except (ValueError, PluginError) as exc:
+        raise _Invalid(key, str(exc).splitlines()[0]) from None
+    known = {**known, **{k: None for k in _DRAWING_SAVE}}
+    check = _Collect()
+    out: dict[str, Any] = {}
+    for k, v in s.items():
+        if k not in known:
+            allowed = ", ".join(sorted(known)) or "(none)"
+            check(
+                _fail, key + (k,), f"unknown option {k!r} for {suffix} output; allowed: {allowed}"
+            )
+            continue
+        extra = _SAVE.get(k)
+        out[k] = check(extra or _typed, key + (k,), v, *(() if extra else (known[k],)))
+    check.raise_all()
+    return out
 
 
 # -- entry point -----------------------------------------------------------------------
@@ -848,8 +1028,14 @@ def _toml() -> Any:
     return tomllib
 
 
-def load_scene_file(path: str | os.PathLike[str]) -> tuple[Any, Any, dict[str, Any]]:
+def load_scene_file(
+    path: str | os.PathLike[str], output: str | os.PathLike[str] | None = None
+) -> tuple[Any, Any, dict[str, Any]]:
     """Read and validate a TOML scene file.
+
+    ``output`` is the file the figure will be written to (default: the scene
+    file with suffix ``.pdf``): its suffix chooses the backend whose options
+    ``[save]`` may give.
 
     Returns
     -------
@@ -862,18 +1048,23 @@ def load_scene_file(path: str | os.PathLike[str]) -> tuple[Any, Any, dict[str, A
     Raises
     ------
     SceneFileError
-        With a one-line message ``file:line: key: problem`` for the first
-        problem found.  Nothing is built for a file with any problem.
+        With one line ``file:line: key: problem`` per problem found (all of
+        them).  Nothing is built for a file with any problem.
     """
     tomllib = _toml()
     shown = str(path)
+    suffix = Path(output).suffix if output is not None else ".pdf"
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = Path(path).read_text(encoding="utf-8-sig")  # a BOM is fine
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
         raise SceneFileError(f"{shown}: cannot read the scene file: {reason}", path=shown) from None
     try:
         data = tomllib.loads(text)
+    except RecursionError:
+        raise SceneFileError(
+            f"{shown}: invalid TOML: arrays or tables nested too deeply", path=shown
+        ) from None
     except tomllib.TOMLDecodeError as exc:
         msg = str(exc)
         m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
@@ -891,11 +1082,21 @@ def load_scene_file(path: str | os.PathLike[str]) -> tuple[Any, Any, dict[str, A
             f"{loc}: {near}invalid TOML: {reason}", path=shown, line=line, key=near.rstrip(": ")
         ) from None
     try:
-        return parse_scene(data)
+        return parse_scene(data, suffix)
+    except RecursionError:
+        raise SceneFileError(f"{shown}: values nested too deeply", path=shown) from None
     except _Invalid as exc:
-        line = _Locator(text).line_of(exc.key)
-        key = _key_text(exc.key)
-        loc = f"{shown}:{line}" if line else shown
-        where = f"{loc}: {key}: " if key else f"{loc}: "
-        message = " ".join(exc.message.split())  # one line, always
-        raise SceneFileError(where + message, path=shown, line=line, key=key) from None
+        locator = _Locator(text)
+        errors = []
+        for e in [exc, *exc.more]:
+            line = locator.line_of(e.key)
+            errors.append((line, _key_text(e.key), " ".join(e.message.split())))
+        errors.sort(key=lambda e: (e[0] is None, e[0] or 0))
+        lines = []
+        for line, key, message in errors:
+            loc = f"{shown}:{line}" if line else shown
+            lines.append(f"{loc}: {key}: {message}" if key else f"{loc}: {message}")
+        first = errors[0]
+        raise SceneFileError(
+            "\n".join(lines), path=shown, line=first[0], key=first[1], errors=errors
+        ) from None

@@ -21,9 +21,8 @@ from typing import TYPE_CHECKING, Any
 
 import attrs
 import numpy as np
-from scipy.interpolate import make_interp_spline
-from scipy.spatial import cKDTree
 
+from ._budget import check_geodesic, check_intersection
 from ._own import CONTOUR, OFF
 from ._validate import as_number, count, finite_positive, one_of, vector3
 from .curvature import asymptotic_field
@@ -55,7 +54,7 @@ class AsymptoticLines(Family):
 
     Surfaces with closed forms supply ``asymptotic_lines(n1, n2)`` (the rulings
     of the hyperboloid of one sheet and the hyperbolic paraboloid); others are
-    integrated numerically (:mod:`lgraph.fieldlines`): complete lines by
+    integrated numerically (:mod:`!lgraph.fieldlines`): complete lines by
     default, or trimmed to even spacing with ``spacing="even"``.
 
     >>> AsymptoticLines(-1, 3)
@@ -148,10 +147,24 @@ def geodesic(surface: Any, uv0: Any, direction: Any, length: float) -> CurveOnSu
     Integrates ``G u'' = -J^T (x11 u1'^2 + 2 x12 u1' u2' + x22 u2'^2)``: the
     acceleration of a geodesic is normal to the surface.
     """
-    sol, t1 = _geodesic_solution(surface, uv0, direction, float(length))
+    length = check_geodesic("geodesic", surface, uv0, direction, length)
+    sol, t1 = _geodesic_solution(surface, uv0, direction, length)
     return CurveOnSurface(
         surface, lambda t: surface.domain.wrap(np.asarray(sol(t))[:2].T), 0.0, max(t1, 1e-12)
     )
+
+
+def _pair(owner: str, name: str, value: Any) -> tuple[float, float]:
+    """Converter: a pair of finite numbers (ValueError naming ``name`` otherwise)."""
+    try:
+        a, b = (float(as_number(x)) for x in value)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"{owner}: {name} must be a pair of finite numbers, got {value!r}"
+        ) from None
+    if not (np.isfinite(a) and np.isfinite(b)):
+        raise ValueError(f"{owner}: {name} must be a pair of finite numbers, got {value!r}")
+    return a, b
 
 
 @attrs.frozen(eq=False)
@@ -166,14 +179,17 @@ class Geodesic(Family):
     ValueError: Geodesic: length must be a positive finite number, got 0
     """
 
-    uv0: tuple[float, float] = attrs.field(converter=lambda v: tuple(float(x) for x in v))
-    direction: tuple[float, float] = attrs.field(converter=lambda v: tuple(float(x) for x in v))
+    uv0: tuple[float, float] = attrs.field(converter=lambda v: _pair("Geodesic", "uv0", v))
+    direction: tuple[float, float] = attrs.field(
+        converter=lambda v: _pair("Geodesic", "direction", v)
+    )
     length: float = attrs.field(
         default=10.0, converter=as_number, validator=finite_positive("Geodesic")
     )
     both_ways: bool = attrs.field(default=False, kw_only=True)
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        check_geodesic("Geodesic", surface, self.uv0, self.direction, self.length)
         fwd, t1 = _geodesic_solution(surface, self.uv0, self.direction, self.length)
         t0 = 0.0
         bwd = None
@@ -294,6 +310,10 @@ def intersection_curves(a: Any, b: Any, grid: int = 80, step: float | None = Non
     each curve is marched with predictor steps along the tangent (null vector
     of ``[J_a, -J_b]``) and Newton corrections.
     """
+    check_intersection("intersection_curves", a, b, grid, step)
+    from scipy.interpolate import make_interp_spline  # imported when first needed
+    from scipy.spatial import cKDTree
+
     size = min(a.size, b.size)
     h = step if step is not None else size / 150
     da, db = a.domain, b.domain
@@ -379,6 +399,7 @@ class IntersectionCurve(Family):
             raise TypeError(f"IntersectionCurve: other must be a Surface, got {type(v).__name__}")
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        check_intersection("IntersectionCurve", surface, self.other, 80, None)
         curves = intersection_curves(surface, self.other)
         if not curves:
             return []
@@ -418,7 +439,7 @@ def _vec(owner: str, name: str) -> Any:
 class Parallelogram(Surface):
     """Planar patch ``origin + u1 e1 + u2 e2``, ``0 <= u1, u2 <= 1``.
 
-    Its contour is its boundary; hits are exact.  :meth:`centered` builds one
+    Its contour is its boundary; hits are exact.  :meth:`!centered` builds one
     around a point (e.g. a tangent plane).
 
     >>> p = Parallelogram((0, 0, 0), (1, 0, 0), (2, 0, 0))
@@ -529,7 +550,7 @@ class Arrow(Surface):
     """A thin 3-D arrow from ``tail`` to ``tip``: a cylinder shaft and a cone head.
 
     Drawn by its outline only (shaft and head silhouettes and the rim of the
-    head: its :meth:`contour`); add it with ``scene.add(arrow, lg.Contour(),
+    head: its :meth:`!contour`); add it with ``scene.add(arrow, lg.Contour(),
     contour=False)`` so that no parameter lines are drawn.  It hides what is
     behind it and is hidden like any surface.
 

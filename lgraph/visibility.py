@@ -17,6 +17,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -24,10 +25,12 @@ import numpy as np
 from . import _tolerance as tol
 from ._flips import locate_flips, seed_crossings
 from ._occlusion import Occlusion
-from ._sampling import Samples, refine
+from ._sampling import Samples, check_points, refine
+from ._validate import as_number
 from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
 from .geometry.transforms import Transform
 from .projectors import CentralProjector, ParallelProjector, Projector
+from .scene import _OUTLINE
 
 if TYPE_CHECKING:
     from .scene import Node, Scene
@@ -164,10 +167,26 @@ def render(
             "Scene.render: projector must be a ParallelProjector or CentralProjector, "
             f"got {type(projector).__name__}"
         )
+    tolerance = as_number(tolerance)
     if not (
-        isinstance(tolerance, (int, float)) and math.isfinite(tolerance) and 0 < tolerance <= 0.1
+        isinstance(tolerance, (int, float))
+        and not isinstance(tolerance, bool)
+        and math.isfinite(tolerance)
+        and tol.MIN_CHORD_TOLERANCE <= tolerance <= 0.1
     ):
-        raise ValueError(f"Scene.render: tolerance must be a number in (0, 0.1], got {tolerance!r}")
+        raise ValueError(
+            f"Scene.render: tolerance must be a number in [{tol.MIN_CHORD_TOLERANCE:g}, 0.1] "
+            f"(a fraction of the figure's diagonal), got {tolerance!r}"
+        )
+    if not isinstance(hidden_lines, (bool, np.bool_)):
+        raise TypeError(f"Scene.render: hidden_lines must be True or False, got {hidden_lines!r}")
+    hidden_lines = bool(hidden_lines)
+    if hidden_style is not None and not isinstance(hidden_style, Style):
+        raise TypeError(
+            "Scene.render: hidden_style must be a Style (e.g. lg.Style(color='grey', "
+            f"dash=(2, 1.5))) or None, got {hidden_style!r}"
+        )
+    page = _checked_page(page)
     hidden_style = HIDDEN_STYLE if hidden_style is None else hidden_style
     nodes = scene.nodes
     batches = [
@@ -176,12 +195,7 @@ def render(
         for b in scene.batches(node, local_projector(projector, node.transform))
         if len(b)
     ]
-    n_initial = tol.INITIAL_SAMPLES * sum(len(b) for _, b in batches)
-    if n_initial > tol.MAX_POINTS:
-        raise ValueError(
-            f"Scene.render: {sum(len(b) for _, b in batches)} curves need more than "
-            f"{tol.MAX_POINTS} sample points; draw fewer lines"
-        )
+    check_points(tol.INITIAL_SAMPLES * sum(len(b) for _, b in batches))
     if not batches:
         return _with_marks(scene, [], nodes, projector, hidden_lines, hidden_style, page)
     s = Samples([(ni, b, nodes[ni].transform) for ni, b in batches], projector)
@@ -211,6 +225,7 @@ def render(
     _classify(s, vis)
     locate_flips(s, vis, projector)
     strokes = _strokes(s, nodes, hidden_lines, hidden_style, 1e-12 * diag)
+    _warn_unused_styles(s, nodes)
     return _with_marks(scene, strokes, nodes, projector, hidden_lines, hidden_style, page, vis)
 
 
@@ -234,3 +249,35 @@ def _with_marks(
         placed, dots = place_marks(labels, points, projector, vis, hidden_lines, hidden_style)
         strokes = strokes + dots
     return Drawing(strokes=strokes, page=page, labels=placed)
+
+
+def _checked_page(page: object) -> Page | None:
+    """``page`` as a Page (or None), checked before any rendering."""
+    if page is None or isinstance(page, Page):
+        return page
+    from .drawing import _page
+
+    try:
+        return _page(page)
+    except (TypeError, ValueError) as e:
+        raise ValueError(
+            f"Scene.render: page must be a Page, (width, height) in pt or None, got {page!r} ({e})"
+        ) from None
+
+
+def _warn_unused_styles(s: Samples, nodes: tuple[Node, ...]) -> None:
+    """Warn about keys of a node's style dict that name no family it draws
+    (a typo such as ``"kontour"`` would otherwise pass silently)."""
+    drawn: dict[int, set[str]] = {}
+    for batch, node, _, _ in s.parts:
+        names = batch.curve_family
+        drawn.setdefault(node, set()).update([batch.family] if names is None else set(names))
+    for k, node in enumerate(nodes):
+        if isinstance(node.style, dict):
+            unused = sorted(set(node.style) - drawn.get(k, set()) - {"default", *_OUTLINE})
+            if unused:
+                warnings.warn(
+                    f"Scene.render: node {k} ({node.item!r}) has styles for {unused}, which it "
+                    f"does not draw; it draws {sorted(drawn.get(k, set()))}",
+                    stacklevel=4,
+                )

@@ -1,6 +1,7 @@
 """The Sphinx documentation builds without warnings and its examples run.
 
-Both builds use ``-W`` (warnings are errors), as CI does; the html build here
+Both builds use ``-W`` (warnings are errors), as CI does, and the html build
+is nitpicky (``-n``: every cross-reference must resolve); the html build here
 skips rendering the gallery (``lgraph_gallery_build=0``; ``test_gallery.py``
 covers the builder) except for one figure, to check the embedding.
 """
@@ -29,10 +30,10 @@ def _sphinx(builder: str, out: Path, *extra: str) -> subprocess.CompletedProcess
 
 def test_html_build(tmp_path: Path) -> None:
     out = tmp_path / "html"
-    res = _sphinx("html", out, "-D", "lgraph_gallery_only=extra_hidden_dashed")
+    res = _sphinx("html", out, "-n", "-D", "lgraph_gallery_only=extra_hidden_dashed")
     assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-3000:]
     for page in ("index", "getting_started", "concepts", "tutorial_surface", "mathematics",
-                 "gallery", "api", "plotters_latex"):  # fmt: skip
+                 "gallery", "limits", "api", "plotters_latex"):  # fmt: skip
         assert (out / f"{page}.html").exists(), page
     gallery_page = (out / "gallery.html").read_text(encoding="utf-8")
     assert 'src="gallery/extra_hidden_dashed.png"' in gallery_page
@@ -56,3 +57,15 @@ def test_api_reference_lists_every_public_name() -> None:
                                 api, re.M))  # fmt: skip
     missing = sorted(set(lgraph.__all__) - documented)
     assert not missing, f"add these public names to docs/api.rst: {missing}"
+
+
+def test_api_reference_has_the_scene_file_format_and_the_plugins() -> None:
+    api = (DOCS / "api.rst").read_text(encoding="utf-8")
+    assert ".. automodule:: lgraph.scenefile" in api
+    assert ".. automodule:: lgraph.plugins" in api
+    import lgraph.scenefile as sf
+
+    # the format in the module docstring names every table and key the parser allows
+    for key in (*sf._TOP, *sf._OBJECT, *sf._STYLE, "hidden_lines", "tolerance", "hidden_style",
+                "preset", "landscape", "margin", "kind", "eye", "target", "direction"):  # fmt: skip
+        assert re.search(rf"\b{key}\b", sf.__doc__), key

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 import textwrap
@@ -99,7 +100,7 @@ def test_figure_7_2_scene_file_renders_the_gallery_script(tmp_path):
 
 
 def test_transforms_styles_page_and_options(tmp_path):
-    scene, projector, options = load_scene_file(write(tmp_path, TWO_OBJECTS))
+    scene, projector, options = load_scene_file(write(tmp_path, TWO_OBJECTS), output="fig.png")
     ref = lg.Scene()
     ref.add(
         lg.Ellipsoid(3, 2, 1.5),
@@ -322,3 +323,88 @@ def test_lgraph_render_writes_the_figure(tmp_path):
     )  # fmt: skip
     assert r.returncode == 0, r.stderr
     assert out.read_text().count("<polyline") >= 5
+
+
+def test_save_options_of_a_registered_backend_are_checked_and_passed(tmp_path, monkeypatch):
+    """Backend writers declare their options (keyword parameters, or an
+    ``lgraph_options`` dict); ``[save]`` is checked against them and passed on."""
+    from lgraph import backends
+
+    got = {}
+
+    def write_fake(drawing, path, *, standalone=False, precision=2):
+        got.update(standalone=standalone, precision=precision)
+        Path(path).write_text("fake")
+
+    def write_declared(drawing, path, **options):
+        got.update(options)
+        Path(path).write_text("declared")
+
+    write_declared.lgraph_options = {"pens": 1}
+    monkeypatch.setitem(backends._BACKENDS, ".fake", write_fake)
+    monkeypatch.setitem(backends._BACKENDS, ".decl", write_declared)
+    ok = write(tmp_path, BASE + "\n[save]\nstandalone = true\n")
+    scene, projector, options = load_scene_file(ok, output=tmp_path / "f.fake")
+    assert options["save"] == {"standalone": True}
+    scene.render(projector).save(tmp_path / "f.fake", **options["save"])
+    assert got == {"standalone": True, "precision": 2}
+    bad = write(tmp_path, BASE + "\n[save]\nstandalone = 1\nprecision = 1.5\npens = 3\n")
+    with pytest.raises(SceneFileError) as e:
+        load_scene_file(bad, output="f.fake")
+    assert len(e.value.errors) == 3
+    assert "save.standalone: expected true or false" in str(e.value)
+    assert (
+        "save.pens: unknown option 'pens' for .fake output; "
+        "allowed: height, precision, standalone, width"
+        in str(e.value)
+    )
+    pens = write(tmp_path, BASE + "\n[save]\npens = 4\n")
+    assert load_scene_file(pens, output="f.decl")[2]["save"] == {"pens": 4}
+    with pytest.raises(SceneFileError, match="unknown option 'pens' for .svg output"):
+        load_scene_file(pens, output="f.svg")
+
+
+def test_every_problem_of_a_file_is_reported_at_once(tmp_path):
+    text = (
+        BASE.replace("a = 3", "a = -3") + '\n[render]\nhidden_lines = "yes"\n[page]\nmargin = "x"\n'
+    )
+    text += '\n[[object]]\nsurface = "no-such-surface"\n'
+    path = write(tmp_path, text)
+    with pytest.raises(SceneFileError) as e:
+        load_scene_file(path)
+    keys = [k for _, k, _ in e.value.errors]
+    assert "render.hidden_lines" in keys and "page.margin" in keys and "object[1].surface" in keys
+    assert any(k.startswith("object[0].params") for k in keys)
+    assert len(str(e.value).splitlines()) == len(e.value.errors) >= 4
+    lines = [ln for ln, _, _ in e.value.errors]
+    assert lines == sorted(lines) and all(isinstance(ln, int) for ln in lines)
+
+
+def test_an_eye_inside_an_object_is_reported_before_rendering(tmp_path):
+    text = BASE.replace('kind = "parallel"', 'kind = "central"')
+    text = re.sub(r"direction = \[[^\]]*\]", "eye = [0.5, 0, 0]", text)
+    path = write(tmp_path, text)
+    with pytest.raises(SceneFileError) as e:
+        load_scene_file(path)
+    assert "projector.eye: object[0]" in str(e.value) and "behind the eye" in str(e.value)
+    far = write(tmp_path, re.sub(r"eye = \[0.5, 0, 0\]", "eye = [20, 5, 3]", text))
+    scene, projector, _ = load_scene_file(far)
+    assert scene.render(projector).strokes
+
+
+def test_tikz_plugin_options_pass_from_save(tmp_path, monkeypatch):
+    """The example TikZ plugin declares ``standalone`` as a keyword parameter;
+    ``[save] standalone = true`` reaches it (registered here by hand, as its
+    entry point would)."""
+    from lgraph import backends
+
+    monkeypatch.syspath_prepend(
+        str(Path(__file__).resolve().parents[1] / "plugins/lgraph-tikz/src")
+    )
+    lgraph_tikz = pytest.importorskip("lgraph_tikz")
+    monkeypatch.setitem(backends._BACKENDS, ".tex", lgraph_tikz.write_tikz)
+    path = write(tmp_path, BASE + "\n[save]\nstandalone = true\n")
+    scene, projector, options = load_scene_file(path, output=tmp_path / "f.tex")
+    assert options["save"] == {"standalone": True}
+    out = scene.render(projector).save(tmp_path / "f.tex", **options["save"])
+    assert "\\documentclass" in out.read_text()

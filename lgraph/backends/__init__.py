@@ -17,7 +17,7 @@ import importlib
 from collections.abc import Callable
 from typing import Any
 
-__all__ = ["get_backend", "register_backend", "backend_suffixes"]
+__all__ = ["get_backend", "register_backend", "backend_suffixes", "backend_options"]
 
 Writer = Callable[..., None]
 
@@ -66,3 +66,39 @@ def get_backend(suffix: str) -> Writer:
         entry = getattr(importlib.import_module(module), name)
         _BACKENDS[key] = entry
     return entry
+
+
+def backend_options(suffix: str) -> dict[str, Any]:
+    """The options the writer for ``suffix`` accepts, with their defaults.
+
+    A writer declares its options as keyword parameters after ``drawing,
+    path`` (their defaults tell the expected type), or, when it takes
+    ``**options``, in an attribute ``lgraph_options`` (a dict name ->
+    default).  Scene files check their ``[save]`` keys against this before
+    rendering, and pass them on unchanged.  Loads the writer (a plugin's on
+    first use); raises ValueError for an unknown suffix.
+
+    >>> backend_options(".svg")
+    {'precision': 3}
+    >>> sorted(backend_options(".png"))
+    ['dpi', 'size', 'supersample']
+    """
+    import inspect
+
+    writer: Any = get_backend(suffix)
+    load = getattr(writer, "load_writer", None)
+    if load is not None:  # a plugin backend not imported yet
+        writer = load()
+    declared = getattr(writer, "lgraph_options", None)
+    if isinstance(declared, dict):
+        return dict(declared)
+    try:
+        params = list(inspect.signature(writer).parameters.values())[2:]
+    except (TypeError, ValueError):
+        return {}
+    kinds = (inspect.Parameter.KEYWORD_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
+    return {
+        p.name: None if p.default is inspect.Parameter.empty else p.default
+        for p in params
+        if p.kind in kinds
+    }

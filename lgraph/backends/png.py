@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import warnings
 from typing import Any
 
 import numpy as np
@@ -142,8 +143,11 @@ def write_png(
 
     Notes
     -----
-    Line widths scale with the resolution (at least 1 supersampled pixel).
-    Dashes are split with :func:`lgraph.drawing.dash_polyline`.  The background
+    Line widths scale with the resolution (at least 1 supersampled pixel); a
+    stroke wider than twice the image's diagonal covers the whole image (drawn
+    as one fill, with a warning).  Dashes are split with
+    :func:`lgraph.drawing.dash_polyline`; a dash pattern with a dash or gap
+    shorter than one output pixel is drawn solid, with a warning.  The background
     is ``drawing.background`` (an RGB image); None gives a transparent RGBA
     image.  The effective dpi is written into the PNG metadata.
 
@@ -186,20 +190,43 @@ def write_png(
     mat = np.array([[sx * ss, 0.0], [0.0, -sy * ss]])
     off = np.array([ox * ss - 0.5, (oy + ph * sy) * ss - 0.5])
     unit = math.sqrt(sx * sy) * ss  # supersampled px per pt for widths and dashes
+    diag = math.hypot(w * ss, h * ss)  # canvas diagonal in supersampled px
+    solid_dashes: set[tuple[float, ...]] = set()
+    too_wide: set[float] = set()
 
     for pts, stroke in page_runs(drawing):
         style = stroke.style
         ink = tuple(round(c * 255) for c in style.color)
         if mode == "RGBA":
             ink = (*ink, 255)
+        if style.width * unit >= 2 * diag:
+            # a stroke this wide covers every pixel of the page: one fill, not
+            # thousands of page-sized polygons
+            too_wide.add(style.width)
+            draw.rectangle((0, 0, w * ss, h * ss), fill=ink)
+            continue
         lw = max(1, round(style.width * unit))
         px = pts @ mat + off
-        if style.dash:
+        if style.dash and min(style.dash) * unit < ss:
+            solid_dashes.add(tuple(style.dash))  # shorter than a pixel: drawn solid
+        elif style.dash:
             pattern = tuple(x * unit for x in style.dash)
             for piece in dash_polyline(px, pattern):
                 _draw_polyline(draw, piece, ink, lw)
-        else:
-            _draw_polyline(draw, px, ink, lw)
+            continue
+        _draw_polyline(draw, px, ink, lw)
+    if too_wide:
+        warnings.warn(
+            f"write_png: stroke widths {sorted(too_wide)} pt exceed twice the image's "
+            "diagonal; such a stroke covers the whole image",
+            stacklevel=2,
+        )
+    if solid_dashes:
+        warnings.warn(
+            f"write_png: dash patterns {sorted(solid_dashes)} (pt) have dashes or gaps "
+            f"shorter than a pixel at {72 * math.sqrt(sx * sy):.4g} dpi; drawn solid",
+            stacklevel=2,
+        )
 
     if getattr(drawing, "labels", ()):
         from ._labels import png_labels

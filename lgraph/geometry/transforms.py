@@ -13,6 +13,7 @@ array([ 0.3, -2. ,  5. ])
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Any
 
 import attrs
@@ -114,13 +115,13 @@ def rotate(axis: Any, degrees: float) -> Transform:
             raise ValueError(f"rotate: axis must be 'x', 'y', 'z' or a 3-vector, got {axis!r}")
         axis = _AXES[axis.lower()]
     a = vector3("rotate", "axis", axis, nonzero=True)
-    try:
-        deg = float(degrees)
-    except (TypeError, ValueError):
-        raise ValueError(f"rotate: degrees must be a finite number, got {degrees!r}") from None
+    if isinstance(degrees, bool) or not isinstance(degrees, numbers.Real):
+        raise ValueError(f"rotate: degrees must be a finite number, got {degrees!r}")
+    deg = float(degrees)
     if not math.isfinite(deg):
         raise ValueError(f"rotate: degrees must be a finite number, got {degrees!r}")
-    k = a / np.linalg.norm(a)
+    k = a / np.abs(a).max()  # no overflow or underflow in the norm
+    k /= np.linalg.norm(k)
     th = math.radians(deg)
     kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
     r = np.eye(3) + math.sin(th) * kx + (1 - math.cos(th)) * (kx @ kx)

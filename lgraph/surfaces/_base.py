@@ -133,8 +133,8 @@ class Domain:
 class Surface:
     """Base class of all surfaces.
 
-    Subclasses are frozen attrs classes that define :attr:`domain` and
-    :meth:`point`; everything else has a default.  Vectorized methods take
+    Subclasses are frozen attrs classes that define :attr:`!domain` and
+    :meth:`!point`; everything else has a default.  Vectorized methods take
     broadcastable arrays ``u1, u2`` and return arrays of shape ``(..., 3)``.
     """
 
@@ -184,7 +184,7 @@ class Surface:
         """First partial derivatives ``x1 = dx/du1`` and ``x2 = dx/du2``.
 
         Default: fourth-order central differences (all stencil points in one
-        call of :meth:`point`).
+        call of :meth:`!point`).
         """
         u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
         h1 = FD_STEP_1 * self.domain.span(0)
@@ -203,7 +203,7 @@ class Surface:
         Default: fourth-order central differences of ``point`` with steps
         ``FD_STEP_2`` of the spans (rounding and truncation errors both near
         ``1e-10``: smooth enough for ODE solvers), all 25 stencil points in
-        one call of :meth:`point`.
+        one call of :meth:`!point`.
         """
         u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
         h1 = FD_STEP_2 * self.domain.span(0)
@@ -325,7 +325,7 @@ class Surface:
         """Contour curves for ``projector`` (given in this surface's local frame).
 
         Default: numeric (marching squares on ``N . w = 0``, refined by Newton;
-        see :mod:`lgraph.surfaces._numeric`).
+        see :mod:`!lgraph.surfaces._numeric`).
         """
         from ._numeric import contour
 
@@ -357,12 +357,12 @@ class Surface:
         """Which rays ``origins + s * directions``, ``0 < s < smax``, meet the drawn patch.
 
         ``own`` (same length, optional) tells for each origin whether it lies on
-        this surface (:data:`ON`), on its contour (:data:`CONTOUR`) or not
-        (:data:`OFF`); a ray never counts its own origin as a hit.
+        this surface (:data:`!ON`), on its contour (:data:`!CONTOUR`) or not
+        (:data:`!OFF`); a ray never counts its own origin as a hit.
         Directions need not be unit vectors; ``s`` is measured in their units.
 
         Default: numeric (bounding-box hierarchy + Newton; see
-        :mod:`lgraph.surfaces._numeric`).
+        :mod:`!lgraph.surfaces._numeric`).
         """
         from ._numeric import hits
 

@@ -37,7 +37,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components, depth_first_order
 
 from .._own import CONTOUR, OFF, ON
-from .._tolerance import SELF_HIT_RTOL
+from .._tolerance import HIT_CHUNK_RAYS, HIT_MAX_CANDIDATES, SELF_HIT_RTOL
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
@@ -329,6 +329,7 @@ class _Hierarchy:
         d = surface.domain
         n = HIT_LEAVES
         self.n = n
+        self.name = type(surface).__name__
         self.lo1, self.lo2 = d.u1[0], d.u2[0]
         self.h1, self.h2 = d.span(0) / n, d.span(1) / n
         u1 = np.linspace(*d.u1, 2 * n + 1)
@@ -340,6 +341,7 @@ class _Hierarchy:
         # leaf samples (n, n, 3, 3, 3)
         ia = 2 * np.arange(n)[:, None] + np.arange(3)[None, :]
         S = P[ia[:, None, :, None], ia[None, :, None, :]]
+        _check_regular(surface, P, S)
         pad = _cell_pad(S)[..., None] + 1e-9 * self.size
         blo = S.min(axis=(2, 3)) - pad
         bhi = S.max(axis=(2, 3)) + pad
@@ -354,6 +356,43 @@ class _Hierarchy:
             self.levels.append((blo, bhi))
         self.levels.reverse()  # root first
         self.flat = [(a.reshape(-1, 3), b.reshape(-1, 3)) for a, b in self.levels]
+
+
+def _check_regular(surface: Surface, P: np.ndarray, S: np.ndarray) -> None:
+    """Refuse a degenerate surface before any ray is cast at it.
+
+    ``P`` is the sample grid over the whole domain and ``S`` the 3x3 samples of
+    every leaf patch.  All points equal, or a leaf patch whose nine samples
+    span no area (collapsed to a point or a curve: not a regular patch), make
+    every ray meet every such patch (the hit test would subdivide without
+    end).  Poles are fine: a patch touching a pole still spans an area.
+    """
+    name = type(surface).__name__
+    ext = float(np.ptp(P.reshape(-1, 3), axis=0).max())
+    if not ext > 0:
+        raise ValueError(
+            f"{name}: the surface is degenerate: all its points are equal "
+            f"({P.reshape(-1, 3)[0].tolist()}); it has no area to draw"
+        )
+    a = S[..., 2, 2, :] - S[..., 0, 0, :]
+    b = S[..., 2, 0, :] - S[..., 0, 2, :]
+    c = S[..., 2, 1, :] - S[..., 0, 1, :]
+    e = S[..., 1, 2, :] - S[..., 1, 0, :]
+    area = np.maximum(
+        np.linalg.norm(np.cross(a, b), axis=-1), np.linalg.norm(np.cross(c, e), axis=-1)
+    )
+    flat = area <= 1e-12 * ext * ext
+    if flat.any():
+        i, j = np.argwhere(flat)[0]
+        d = surface.domain
+        h1, h2 = d.span(0) / flat.shape[0], d.span(1) / flat.shape[1]
+        u1, u2 = d.u1[0] + i * h1, d.u2[0] + j * h2
+        raise ValueError(
+            f"{name}: the surface is not regular on part of its domain: the patch "
+            f"u1 in [{u1:.6g}, {u1 + h1:.6g}], u2 in [{u2:.6g}, {u2 + h2:.6g}] "
+            f"({int(flat.sum())} of {flat.size} patches) collapses to a point or a curve; "
+            "restrict u1_range/u2_range to where the surface is regular"
+        )
 
 
 _CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -405,6 +444,13 @@ def _candidates(H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray) -
     for lvl, (blo, bhi) in enumerate(H.flat):
         ok, s0, s1 = _slab(o[r], inv[r], blo[k], bhi[k], smax[r])
         r, k, s0, s1 = r[ok], k[ok], s0[ok], s1[ok]
+        if len(r) > HIT_MAX_CANDIDATES * max(1.0, len(o) / HIT_CHUNK_RAYS):
+            raise ValueError(
+                f"{H.name}: rays meet more than {HIT_MAX_CANDIDATES // HIT_CHUNK_RAYS} patch "
+                "boxes each on average (the limit): the surface winds over itself too many "
+                "times or is nearly degenerate; draw one turn (narrow u1_range/u2_range) "
+                "and repeat it with transforms"
+            )
         if lvl + 1 < len(H.flat):
             m = 1 << lvl  # boxes per row at this level
             i, j = k // m, k % m
@@ -571,7 +617,13 @@ def hits(
     smax: np.ndarray,
     own: np.ndarray | None = None,
 ) -> np.ndarray:
-    """Numeric :meth:`Surface.hits` (see there)."""
+    """Numeric :meth:`Surface.hits` (see there).
+
+    Rays are tested in chunks of ``HIT_CHUNK_RAYS`` so that memory stays
+    bounded; a chunk whose rays meet more than ``HIT_MAX_CANDIDATES`` patch
+    boxes in all (a surface winding over itself very many times) is refused
+    with a ValueError before any Newton step.
+    """
     o = np.asarray(origins, dtype=float).reshape(-1, 3)
     v = np.asarray(directions, dtype=float).reshape(-1, 3)
     nray = len(o)
@@ -581,6 +633,17 @@ def hits(
     if not nray:
         return out
     H = _hierarchy(surface)
+    for a in range(0, nray, HIT_CHUNK_RAYS):
+        b = slice(a, a + HIT_CHUNK_RAYS)
+        out[b] = _hits_chunk(surface, H, o[b], v[b], smax[b], own[b])
+    return out
+
+
+def _hits_chunk(
+    surface: Surface, H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray, own: Any
+) -> np.ndarray:
+    nray = len(o)
+    out = np.zeros(nray, bool)
     d = surface.domain
     size = H.size
     vnorm = np.linalg.norm(v, axis=1)

@@ -80,7 +80,7 @@ class ConfocalQuadric(Quadric):
     one sheet (``a^2 < lam < b^2``, axis x), of two sheets (``b^2 < lam < c^2``,
     axis z).  ``height`` (hyperboloids only) bounds the drawn patch along the
     axis, as in the standard classes.  It behaves as the matching standard
-    quadric :attr:`quadric`, turned by :attr:`rotation` (module docstring).
+    quadric :attr:`!quadric`, turned by :attr:`!rotation` (module docstring).
 
     >>> ConfocalQuadric(1, 2, 3, 4.0)
     Traceback (most recent call last):
@@ -218,7 +218,7 @@ class ConfocalQuadric(Quadric):
         return self._wrap(self.quadric.contour(projector))
 
     def lines_of_curvature(self, n1: int, n2: int) -> list[CurveBatch]:
-        """The standard class's closed forms (:mod:`lgraph.surfaces._loc`), turned."""
+        """The standard class's closed forms (:mod:`!lgraph.surfaces._loc`), turned."""
         return self._wrap(self.quadric.lines_of_curvature(n1, n2))
 
     def parameter_lines(self, n1: int, n2: int) -> list[CurveBatch]:

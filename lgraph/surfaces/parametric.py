@@ -26,7 +26,7 @@ import attrs
 import numpy as np
 
 from .._tolerance import SELF_HIT_RTOL
-from .._validate import as_number, finite_positive, interval
+from .._validate import as_number, at_most, finite_positive, interval
 from ..families import parameter_line_batches
 from ._base import CONTOUR, ON, Domain, Surface, _bool_pair, _pole_pairs
 from ._polyroots import all_real_roots, has_root_in
@@ -123,6 +123,8 @@ class ParametricSurface(Surface):
     def __attrs_post_init__(self) -> None:
         if self.func is None:
             raise TypeError("ParametricSurface: func must be callable, got NoneType")
+        if self.derivatives_func is not None:
+            self._probe_derivatives()
         u1 = np.array([self.u1_range[0], sum(self.u1_range) / 2])
         u2 = np.array([self.u2_range[0], sum(self.u2_range) / 2])
         try:
@@ -133,6 +135,23 @@ class ParametricSurface(Surface):
             raise ValueError(
                 "ParametricSurface: func must map arrays of shape (2,) to shape (2, 3), "
                 f"got shape {probe.shape}"
+            )
+
+    def _probe_derivatives(self) -> None:
+        u1 = np.array([self.u1_range[0], sum(self.u1_range) / 2])
+        u2 = np.array([self.u2_range[0], sum(self.u2_range) / 2])
+        try:
+            x1, x2 = self.derivatives_func(u1, u2)  # type: ignore[misc]
+            shapes = [np.asarray(x, dtype=float).shape for x in (x1, x2)]
+        except Exception as exc:  # noqa: BLE001 - report any failure of user code
+            raise ValueError(
+                "ParametricSurface: derivatives_func(u1, u2) must return two arrays "
+                f"(x1, x2) of shape broadcast(u1, u2).shape + (3,); it failed: {exc!r}"
+            ) from exc
+        if shapes != [(2, 3), (2, 3)]:
+            raise ValueError(
+                "ParametricSurface: derivatives_func must map arrays of shape (2,) to two "
+                f"arrays of shape (2, 3), got shapes {shapes}"
             )
 
     @property
@@ -151,10 +170,18 @@ class ParametricSurface(Surface):
         return np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
 
 
+#: largest length of a quartic surface: its equation's fourth powers must stay finite
+_MAX_QUARTIC_LENGTH = 1e75
+
+
 def _positive(owner: str, default: float | None = None) -> Any:
+    check = [
+        finite_positive(owner),
+        at_most(owner, _MAX_QUARTIC_LENGTH, "fourth powers of the equation overflow beyond"),
+    ]
     if default is None:
-        return attrs.field(converter=as_number, validator=finite_positive(owner))
-    return attrs.field(default=default, converter=as_number, validator=finite_positive(owner))
+        return attrs.field(converter=as_number, validator=check)
+    return attrs.field(default=default, converter=as_number, validator=check)
 
 
 def _quartic_implicit(points: Any, k: float, lin: np.ndarray) -> np.ndarray:
@@ -255,7 +282,7 @@ class Torus(_QuarticSurface):
 
     ``u1`` runs around the axis (``z``), ``u2`` around the tube; both periodic.
     Lines of curvature are the parameter lines (meridians and parallels).  Its
-    ray test is exact (a quartic in the ray parameter, :meth:`hits`; some 20
+    ray test is exact (a quartic in the ray parameter, :meth:`!hits`; some 20
     times faster than the numeric default); the contour is numeric.
 
     >>> Torus(2, 0)

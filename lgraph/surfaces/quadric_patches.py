@@ -136,7 +136,7 @@ class HyperboloidOneSheet(_PatchQuadric):
     ``|z| <= height`` (default ``2 c``).
 
     ``x = (a cosh u1 cos u2, b cosh u1 sin u2, c sinh u1)``, ``u2`` periodic.
-    Lines of curvature: confocal coordinates (:mod:`lgraph.surfaces._loc`),
+    Lines of curvature: confocal coordinates (:mod:`!lgraph.surfaces._loc`),
     ``n1`` closed loops (parallels if a = b) and ``n2`` complete curves
     through the waist (meridians if a = b).
 
@@ -241,7 +241,7 @@ class HyperboloidTwoSheets(_PatchQuadric):
     ``u1`` in ``[-U, U]`` is signed: its sign picks the sheet, ``|u1|`` the
     hyperbolic distance from the vertex, ``x = (a sinh|u1| cos u2,
     b sinh|u1| sin u2, sign(u1) c cosh u1)``.  Parameter lines are drawn per
-    sheet (:meth:`parameter_lines`).  Lines of curvature: confocal coordinates,
+    sheet (:meth:`!parameter_lines`).  Lines of curvature: confocal coordinates,
     ``n1`` loops and ``n2`` complete curves on each sheet; 4 real umbilics.
 
     >>> HyperboloidTwoSheets(1, 1, 1, height=0.5)
@@ -388,7 +388,7 @@ class EllipticParaboloid(_PatchQuadric):
     (default 1).
 
     ``x = (a u1 cos u2, b u1 sin u2, u1^2)``, ``0 <= u1 <= sqrt(height)``.
-    Lines of curvature: confocal paraboloids (:mod:`lgraph.surfaces._loc`),
+    Lines of curvature: confocal paraboloids (:mod:`!lgraph.surfaces._loc`),
     ``n1`` loops and ``n2`` complete curves; 2 umbilics (1 if a = b).
     """
 
@@ -452,7 +452,7 @@ class HyperbolicParaboloid(_PatchQuadric):
 
     ``x = (a u1, b u2, u1^2 - u2^2)`` (paper §5).  Lines of curvature: the
     confocal-paraboloid parametrization ``(cosh s sinh t, sinh s cosh t)``
-    (:mod:`lgraph.surfaces._loc`), cut exactly to the patch.
+    (:mod:`!lgraph.surfaces._loc`), cut exactly to the patch.
     """
 
     a: float = _positive("HyperbolicParaboloid")
@@ -592,7 +592,7 @@ class HyperbolicCylinder(_PatchQuadric):
     ``u1 = z``; ``u2`` in ``[-2V, 2V]`` (``V = asinh(width/b)``) encodes the
     branch: ``u2 >= 0`` is the branch ``x > 0`` with ``v = u2 - V``, ``u2 < 0``
     the branch ``x < 0`` with ``v = u2 + V``; ``x = (+-a cosh v, b sinh v, u1)``.
-    Parameter lines are drawn per branch (:meth:`parameter_lines`).
+    Parameter lines are drawn per branch (:meth:`!parameter_lines`).
     """
 
     a: float = _positive("HyperbolicCylinder")

@@ -40,7 +40,7 @@ _LATITUDE_LONGITUDE = Domain(
 class Quadric(Surface):
     """Base class: a quadric ``F(x) = x^T A x + b . x + d = 0`` (local coordinates).
 
-    Subclasses define :attr:`A`, :attr:`b`, :attr:`d`, a parametrization and,
+    Subclasses define :attr:`!A`, :attr:`!b`, :attr:`!d`, a parametrization and,
     for unbounded quadrics, :meth:`in_patch` (which part is drawn and hides).
     """
 
@@ -106,7 +106,7 @@ class Quadric(Surface):
         return np.full(np.shape(points)[:-1], np.inf)
 
     def uv_of(self, points: Any) -> np.ndarray:  # pragma: no cover - abstract
-        """Parameters ``(u1, u2)`` of points on the surface (inverse of :meth:`point`)."""
+        """Parameters ``(u1, u2)`` of points on the surface (inverse of :meth:`!point`)."""
         raise NotImplementedError
 
     def contour(self, projector: Any) -> list[CurveBatch]:
@@ -114,7 +114,7 @@ class Quadric(Surface):
         ``2 w^T A x + b.w = 0`` (parallel view ``w``) or by the polar plane
         ``(2 A e + b).x + b.e + 2 d = 0`` of the eye ``e`` (central view),
         parametrized in closed form and cut to the drawn patch
-        (:mod:`lgraph.surfaces._conic`)."""
+        (:mod:`!lgraph.surfaces._conic`)."""
         from ._conic import contour_plane, plane_section
 
         n, h = contour_plane(self, projector)
@@ -258,7 +258,7 @@ class _Ellipsoidal(Quadric):
         return [attrs.evolve(batch, ellipses=np.concatenate([e1, e2]))]
 
     def uv_of(self, points: Any) -> np.ndarray:
-        """Parameters ``(u1, u2)`` of points on the surface (inverse of :meth:`point`)."""
+        """Parameters ``(u1, u2)`` of points on the surface (inverse of :meth:`!point`)."""
         y = np.asarray(points, dtype=float) / self.axes
         u1 = np.arcsin(np.clip(y[..., 2], -1.0, 1.0))
         u2 = np.mod(np.arctan2(y[..., 1], y[..., 0]), 2 * np.pi)
@@ -288,7 +288,7 @@ class _Ellipsoidal(Quadric):
 
     def lines_of_curvature(self, n1: int, n2: int) -> list[CurveBatch]:
         """Closed-form lines of curvature from confocal coordinates (paper §7,
-        Dupin's theorem; derivation in :mod:`lgraph.surfaces._loc`): ``n1``
+        Dupin's theorem; derivation in :mod:`!lgraph.surfaces._loc`): ``n1``
         closed loops around the longest axis, ``n2`` around the shortest, each
         one smooth closed curve.  Rotational ellipsoids give parallels and
         whole meridians; the sphere (every direction principal) its parameter

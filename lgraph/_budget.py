@@ -1,0 +1,136 @@
+"""Budgets: the size of an expensive operation, estimated and refused before the work.
+
+Every operation whose cost grows with an input (geodesic length, the step and
+grid of intersection curves, animation frame counts, ...) calls one of these
+checks at its entry point; each raises a ValueError that names the parameter,
+its value and the limit.  The limits themselves live in
+:mod:`lgraph._tolerance`; the docs page "Limits" lists them all.
+
+>>> check_frames("animate", 36)
+36
+>>> check_frames("animate", 10**6)
+Traceback (most recent call last):
+...
+ValueError: animate: frames must be an integer from 1 to 3600, got 1000000
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any
+
+from . import _tolerance as tol
+
+__all__ = [
+    "check_frames",
+    "check_geodesic",
+    "check_intersection",
+    "check_parameters",
+    "check_surface",
+]
+
+
+def _real(owner: str, name: str, value: Any, what: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{owner}: {name} must be {what}, got {type(value).__name__}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise ValueError(f"{owner}: {name} must be {what}, got {value!r}")
+    return v
+
+
+def _int(owner: str, name: str, value: Any, lo: int, hi: int) -> int:
+    if not isinstance(value, numbers.Integral) or isinstance(value, bool) or not lo <= value <= hi:
+        raise ValueError(f"{owner}: {name} must be an integer from {lo} to {hi}, got {value!r}")
+    return int(value)
+
+
+def check_surface(owner: str, name: str, value: Any) -> Any:
+    """``value`` must be a :class:`~lgraph.surfaces._base.Surface` (TypeError otherwise)."""
+    from .surfaces._base import Surface
+
+    if not isinstance(value, Surface):
+        raise TypeError(f"{owner}: {name} must be a Surface, got {type(value).__name__}")
+    return value
+
+
+def check_parameters(owner: str, surface: Any, u1: Any, u2: Any) -> None:
+    """``surface`` a Surface and ``u1, u2`` finite numbers or arrays of them."""
+    import numpy as np
+
+    check_surface(owner, "surface", surface)
+    for name, value in (("u1", u1), ("u2", u2)):
+        try:
+            a = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(
+                f"{owner}: {name} must be a finite number or an array of them, got {value!r}"
+            ) from None
+        if not np.all(np.isfinite(a)):
+            raise ValueError(
+                f"{owner}: {name} must be a finite number or an array of them, got {value!r}"
+            )
+
+
+def check_frames(owner: str, frames: Any) -> int:
+    """A frame count of an animation or orbit: an integer in 1..``MAX_FRAMES``."""
+    return _int(owner, "frames", frames, 1, tol.MAX_FRAMES)
+
+
+def check_geodesic(owner: str, surface: Any, uv0: Any, direction: Any, length: Any) -> float:
+    """Validate a geodesic's arguments; ``length`` is limited to
+    ``MAX_GEODESIC_TURNS`` times the surface's size (its bounding-box diagonal).
+    Returns the length as a float."""
+    check_surface(owner, "surface", surface)
+    for name, value in (("uv0", uv0), ("direction", direction)):
+        try:
+            pair = [float(x) for x in value]
+        except (TypeError, ValueError):
+            raise ValueError(
+                f"{owner}: {name} must be a pair of finite numbers, got {value!r}"
+            ) from None
+        if len(pair) != 2 or not all(map(math.isfinite, pair)):
+            raise ValueError(f"{owner}: {name} must be a pair of finite numbers, got {value!r}")
+    if not any(float(x) for x in direction):
+        raise ValueError(f"{owner}: direction must be non-zero, got {direction!r}")
+    length = _real(owner, "length", length, "a positive finite number")
+    if not length > 0:
+        raise ValueError(f"{owner}: length must be a positive finite number, got {length!r}")
+    limit = tol.MAX_GEODESIC_TURNS * surface.size
+    if length > limit:
+        raise ValueError(
+            f"{owner}: length {length:g} exceeds the limit of {tol.MAX_GEODESIC_TURNS} times "
+            f"the surface's size ({limit:g})"
+        )
+    return length
+
+
+def check_intersection(owner: str, a: Any, b: Any, grid: Any, step: Any) -> None:
+    """Validate the arguments of an intersection of surfaces ``a`` and ``b``:
+    ``grid`` (seed grid per parameter) in ``8..MAX_INTERSECTION_GRID``, ``step``
+    (marching step, None for the default) positive and at least
+    ``size / MAX_MARCH_STEPS`` times 20 (one curve at most ``MAX_MARCH_STEPS``
+    steps)."""
+    check_surface(owner, "surface", a)
+    check_surface(owner, "other", b)
+    try:
+        same = a is b or bool(a == b)
+    except Exception:  # noqa: BLE001 - an __eq__ comparing arrays: not provably equal
+        same = False
+    if same:
+        raise ValueError(
+            f"{owner}: the two surfaces are the same ({a!r}); they meet along an area, not a curve"
+        )
+    _int(owner, "grid", grid, 8, tol.MAX_INTERSECTION_GRID)
+    if step is None:
+        return
+    h = _real(owner, "step", step, "a positive finite number or None")
+    if not h > 0:
+        raise ValueError(f"{owner}: step must be a positive finite number or None, got {step!r}")
+    smallest = 20 * max(a.size, b.size) / tol.MAX_MARCH_STEPS
+    if h < smallest:
+        raise ValueError(
+            f"{owner}: step {h:g} needs more than {tol.MAX_MARCH_STEPS} marching steps per "
+            f"curve; the smallest step for these surfaces is {smallest:g}"
+        )
