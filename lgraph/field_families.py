@@ -8,7 +8,7 @@
   line through the middle of the patch and over a coarse grid, and ``n`` are
   picked to cover the patch as evenly as they allow, none twice.
   ``spacing="even"`` instead trims lines where they come closer than half
-  the spacing to another (evenly spaced streamlines, :mod:`lgraph._even_spacing`).
+  the spacing to another (evenly spaced streamlines, ``lgraph._even_spacing``).
 * Lines of curvature end at umbilics (:func:`umbilics`).
 
 Derivation: ``docs/mathematics.rst``, "Numeric line families".

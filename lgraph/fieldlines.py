@@ -8,8 +8,8 @@ every point of the parameter plane.  Which lines a family draws is decided in
 
 * The curve parameter is 3-D arc length.  Every line advances in lockstep with
   its own step size (Dormand and Prince's embedded 5(4) pair, error per step below
-  :data:`~lgraph._tolerance.FIELD_RTOL` of the parameter spans,
-  :data:`~lgraph._tolerance.ASYMPTOTIC_RTOL` for asymptotic lines), so one
+  ``FIELD_RTOL`` of the parameter spans,
+  ``ASYMPTOTIC_RTOL`` for asymptotic lines), so one
   field evaluation serves every line; lines are evaluated with the method's
   own 4th-order continuous extension.
 * At every stage a line takes the branch of the field nearest (in the
@@ -18,8 +18,8 @@ every point of the parameter plane.  Which lines a family draws is decided in
 * A line stops at the patch boundary (a step that leaves it is redone to end
   on it), where it passes an umbilic given to :func:`trace`, where the field
   degenerates (the step would have to shrink below
-  :data:`~lgraph._tolerance.FIELD_MIN_STEP`), when it returns to its seed
-  (closed), or after :data:`~lgraph._tolerance.FIELD_MAX_LENGTH` sizes.
+  ``FIELD_MIN_STEP``), when it returns to its seed
+  (closed), or after ``FIELD_MAX_LENGTH`` sizes.
 
 >>> import numpy as np
 >>> import lgraph as lg
@@ -263,7 +263,7 @@ def trace(
     """Trace the lines of ``field`` through ``seeds`` ``(m, 2)``, each starting
     along the branch nearest to ``directions[k]`` (parameter directions),
     forward and backward, all at once.  Lines end where they pass within
-    :data:`~lgraph._tolerance.FIELD_SINGULAR_RTOL` of a point of ``singular``
+    ``FIELD_SINGULAR_RTOL`` of a point of ``singular``
     (parameters of umbilics).  See the module docstring.
     """
     seeds = np.asarray(seeds, float).reshape(-1, 2)

@@ -44,7 +44,7 @@ LAYER_MODES = ("family", "surface", None)
 @attrs.frozen(eq=False)
 class Layer:
     """One layer: its number (from 1), name, style, and its ``(points, stroke)``
-    runs in drawing order (page points, as :func:`lgraph.backends._common.page_runs`
+    runs in drawing order (page points, as ``lgraph.backends._common.page_runs``
     yields them: a stroke broken by non-finite points gives several runs)."""
 
     number: int

@@ -338,7 +338,7 @@ def for_plotter(
         The layers within which paths are sorted (as the SVG backend groups them).
     width : length, optional
         The width the drawing will be saved at (``save("x.svg", width="200mm")``,
-        see :meth:`Drawing.sized`): ``merge`` and ``min_length`` are then
+        see :meth:`lgraph.Drawing.sized`): ``merge`` and ``min_length`` are then
         lengths on that page.  Default: on the drawing's own page.
 
     Returns
