@@ -45,10 +45,12 @@ from .surfaces import (
     HyperboloidOneSheet,
     HyperboloidTwoSheets,
     ParabolicCylinder,
+    Pseudosphere,
     Quadric,
     RuledSurface,
     Sphere,
     Surface,
+    SurfaceOfRevolution,
     TangentSurface,
     TripleOrthogonalSystem,
 )
@@ -61,6 +63,7 @@ from .surfaces.parametric import (
     ParametricSurface,
     Torus,
 )
+from .surfaces.profiles import Profile, named_profile, profile_from_points
 
 __version__ = "0.1.0"
 
@@ -124,3 +127,5 @@ __all__ += [
 ]
 __all__ += ["load_scene_file", "SceneFileError"]
 __all__ += ["Label", "Point", "PlacedLabel", "Group"]
+__all__ += ["SurfaceOfRevolution", "Pseudosphere"]
+__all__ += ["Profile", "named_profile", "profile_from_points"]
