@@ -19,7 +19,13 @@ right way): its extremum is located (a root of ``F'``) and either splits the
 cell into two sign changes or is itself a double root.  So a grazing ray
 whose two roots fall into one cell is never missed, provided a cell holds at
 most one extremum of ``F`` (the profile grid resolves the profile's turns).
-Rays that miss the surface's bounding cylinder are rejected first.
+
+Broad phase: the profile grid is cut into blocks of ``BLOCK`` cells, each
+bounded by a ring (``rho`` and ``z`` ranges padded by a bound on the profile's
+bulge between nodes); a ray is scanned only on the blocks whose rings it
+enters.  Narrow phase: a cell whose ray-parameter range (from its padded
+heights) lies inside ``(eps, lam_max)`` decides a sign change at once; only
+cells straddling those limits are refined (safeguarded Newton on ``F``).
 """
 
 from __future__ import annotations
@@ -44,8 +50,42 @@ CONTOUR_SELF_RTOL = 1e-6
 FLAT_C = 1e-3
 #: a root's ray parameter from the radius must agree with its height to this (times size)
 FLAT_RTOL = 1e-7
-#: (rays x grid nodes) per chunk of the scan
+#: Newton stops where |F| is below this (times size^2): its rounding level
+NEWTON_FTOL = 1e-16
+#: grid cells per block of the broad phase
+BLOCK = 16
+#: (rays x blocks) per chunk of the broad phase
 CHUNK = 1 << 20
+
+
+def _blocks(surface: SurfaceOfRevolution) -> dict:
+    """Ring bounds of blocks of ``BLOCK`` grid cells (cached on the surface)."""
+    g = surface._grid
+    if "blocks" in g:
+        return g["blocks"]
+    t, rho, z = g["t"], g["rho"], g["z"]
+    m = len(t) - 1
+    # bulge of the profile off each cell's chord: (dt^2 / 8) max |P''|, with |P''|
+    # from second differences of the nodes (doubled for safety)
+    dt = np.diff(t)
+    d2 = np.zeros(m + 1)
+    d2[1:-1] = np.hypot(np.diff(rho, 2), np.diff(z, 2)) / (dt[1:] * dt[:-1])
+    d2[0], d2[-1] = d2[1], d2[-2]
+    cellpad = 0.25 * dt * dt * np.maximum(d2[:-1], d2[1:]) + 1e-9 * g["size"]
+    nb = -(-m // BLOCK)
+    j0 = np.arange(nb) * BLOCK
+    j1 = np.minimum(j0 + BLOCK, m)
+    rlo = np.array([rho[a : b + 1].min() for a, b in zip(j0, j1)])
+    rhi = np.array([rho[a : b + 1].max() for a, b in zip(j0, j1)])
+    zlo = np.array([z[a : b + 1].min() for a, b in zip(j0, j1)])
+    zhi = np.array([z[a : b + 1].max() for a, b in zip(j0, j1)])
+    bpad = np.array([cellpad[a:b].max() for a, b in zip(j0, j1)])
+    out = {
+        "j0": j0, "rlo": np.maximum(rlo - bpad, 0.0), "rhi": rhi + bpad,
+        "zlo": zlo - bpad, "zhi": zhi + bpad, "cellpad": cellpad,
+    }  # fmt: skip
+    g["blocks"] = out
+    return out
 
 
 def hits(
@@ -65,7 +105,7 @@ def hits(
     own = np.zeros(n, np.int8) if own is None else np.asarray(own)
     g = surface._grid
     size = g["size"]
-    speed = np.linalg.norm(v, axis=1)
+    speed = np.sqrt(np.einsum("ij,ij->i", v, v))
     vh = v / speed[:, None]
     a = g["frame"][2]
     oa, c = o @ a, vh @ a
@@ -82,105 +122,184 @@ def hits(
     rtol = np.where(own == CONTOUR, CONTOUR_SELF_RTOL, SELF_HIT_RTOL)
     rtol = np.where((own == ON) & flat, FLAT_RTOL, rtol)
     eps = rtol * size
-    # bounding cylinder: the part of the ray inside the slab of heights, nearest the axis
-    rho, z = g["rho"], g["z"]
-    pad = 0.02 * size
-    zlo, zhi, rmax = z.min() - pad, z.max() + pad, rho.max() + pad
-    with np.errstate(invalid="ignore", divide="ignore"):
-        l1, l2 = (zlo - oa) / c, (zhi - oa) / c
-    inslab = (oa >= zlo) & (oa <= zhi)
-    lo = np.where(flat & (c == 0), np.where(inslab, -np.inf, np.inf), np.minimum(l1, l2))
-    hi = np.where(flat & (c == 0), np.where(inslab, np.inf, -np.inf), np.maximum(l1, l2))
-    lo, hi = np.maximum(lo, 0.0), np.minimum(hi, lam_max)
-    near = np.clip(sstar, lo, hi)
-    with np.errstate(invalid="ignore"):
-        r2min = d2 + k2 * (near - sstar) ** 2
-    cand = np.nonzero((hi >= lo) & (r2min <= rmax * rmax))[0]
-    if not len(cand):
+    blk = _blocks(surface)
+    nb = len(blk["j0"])
+    step = max(1, CHUNK // nb)
+    pairs_r, pairs_b = [], []
+    for start in range(0, n, step):
+        sl = slice(start, start + step)
+        r, b = _broad(blk, oa[sl], c[sl], k2[sl], d2[sl], sstar[sl], lam_max[sl])
+        pairs_r.append(r + start)
+        pairs_b.append(b)
+    pr, pb = np.concatenate(pairs_r), np.concatenate(pairs_b)
+    if not len(pr):
         return out
-    m = len(g["t"])
-    step = max(1, CHUNK // m)
-    for start in range(0, len(cand), step):
-        r = cand[start : start + step]
-        out[r] = _scan(surface, c[r], k2[r], d2[r], hstar[r], sstar[r], eps[r], lam_max[r])
+    ray = (c, k2, d2, hstar, sstar, eps, lam_max)
+    _narrow(surface, blk, pr, pb, ray, out)
     return out
 
 
-def _scan(
-    surface: SurfaceOfRevolution,
-    c: np.ndarray,
-    k2: np.ndarray,
-    d2: np.ndarray,
-    hs: np.ndarray,
-    ss: np.ndarray,
-    eps: np.ndarray,
-    lam_max: np.ndarray,
-) -> np.ndarray:
-    """Whether each line has a root with ``eps < lam < lam_max``."""
-    from .ruled import _illinois
+def _broad(blk: dict, oa, c, k2, d2, ss, lam_max) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
+    """(ray, block) pairs whose ring the ray segment ``0 < lam < lam_max`` enters."""
+    C = c[:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        l1 = (blk["zlo"] - oa[:, None]) / C
+        l2 = (blk["zhi"] - oa[:, None]) / C
+    zero = C == 0
+    inslab = (oa[:, None] >= blk["zlo"]) & (oa[:, None] <= blk["zhi"])
+    lo = np.where(zero, np.where(inslab, -np.inf, np.inf), np.minimum(l1, l2))
+    hi = np.where(zero, np.where(inslab, np.inf, -np.inf), np.maximum(l1, l2))
+    lo = np.maximum(lo, 0.0)
+    hi = np.minimum(hi, lam_max[:, None])
+    S, K2, D2 = ss[:, None], k2[:, None], d2[:, None]
+    near = np.clip(S, lo, hi)
+    with np.errstate(invalid="ignore"):
+        rmin2 = D2 + K2 * (near - S) ** 2
+        far = np.maximum(np.abs(lo - S), np.abs(hi - S))
+        rmax2 = D2 + K2 * far * far
+    ok = (hi >= lo) & (rmin2 <= blk["rhi"] ** 2) & (rmax2 >= blk["rlo"] ** 2)
+    return np.nonzero(ok)
 
+
+def _newton(f_df, a, b, fa, fb, xtol, ftol):  # noqa: ANN001, ANN202
+    """Roots in brackets ``[a, b]`` (``fa``, ``fb`` of opposite signs): Newton steps
+    from the middle, bisection when a step leaves the bracket; all at once.
+    Stops at ``|f| <= ftol`` (rounding level) or a step below ``xtol``."""
+    a, b, fa = a.copy(), b.copy(), fa.copy()
+    x = 0.5 * (a + b)
+    idx = np.arange(len(a))
+    for _ in range(80):
+        xi = x[idx]
+        f, df = f_df(xi, idx)
+        left = (f > 0) == (fa[idx] > 0)  # root in [x, b]
+        ai = np.where(left, xi, a[idx])
+        bi = np.where(left, b[idx], xi)
+        a[idx], b[idx] = ai, bi
+        fa[idx] = np.where(left, f, fa[idx])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            nx = xi - f / df
+        newton = (nx >= ai) & (nx <= bi)
+        nx = np.where(newton, nx, 0.5 * (ai + bi))
+        x[idx] = nx
+        converged = newton & (np.abs(nx - xi) <= xtol)
+        keep = (np.abs(f) > ftol) & ~converged & (bi - ai > xtol)
+        idx = idx[keep]
+        if not len(idx):
+            break
+    return x
+
+
+def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None:  # noqa: ANN001
+    """Scan the (ray, block) pairs on the fine grid; set ``out[ray]`` for hits."""
+    c, k2, d2, hs, ss, eps, lam_max = ray
     g = surface._grid
-    t, rho, z, drho, dz = g["t"], g["rho"], g["z"], g["drho"], g["dz"]
     size = g["size"]
     ftol = GRAZE_FTOL * size * size
-    span = t[-1] - t[0]
-    c2 = c * c
-    C2, K2, D2, H = c2[:, None], k2[:, None], d2[:, None], hs[:, None]
+    t_all = g["t"]
+    m = len(t_all) - 1
+    span = t_all[-1] - t_all[0]
+    # nodes of each pair's block (blocks at the end may be shorter: clamp, and mask)
+    j = blk["j0"][pb][:, None] + np.arange(BLOCK + 1)
+    valid_cell = j[:, 1:] <= m
+    j = np.minimum(j, m)
+    t, rho, z = t_all[j], g["rho"][j], g["z"][j]
+    drho, dz = g["drho"][j], g["dz"][j]
+    C2 = (c * c)[pr][:, None]
+    K2, D2, H = k2[pr][:, None], d2[pr][:, None], hs[pr][:, None]
     dzh = z - H
     F = C2 * (rho * rho - D2) - K2 * dzh * dzh
     dF = 2 * (C2 * rho * drho - K2 * dzh * dz)
+    # each cell's range of the ray parameter (steep rays; flat rays: unknown)
+    cp = blk["cellpad"][np.minimum(j[:, :-1], m - 1)]
+    zc_lo = np.minimum(z[:, :-1], z[:, 1:]) - cp
+    zc_hi = np.maximum(z[:, :-1], z[:, 1:]) + cp
+    cr = c[pr][:, None]
+    steep = np.abs(cr) >= FLAT_C
+    with np.errstate(invalid="ignore", divide="ignore"):
+        l1 = ss[pr][:, None] + (zc_lo - H) / cr
+        l2 = ss[pr][:, None] + (zc_hi - H) / cr
+    llo = np.where(steep, np.minimum(l1, l2), -np.inf)
+    lhi = np.where(steep, np.maximum(l1, l2), np.inf)
+    E, LM = eps[pr][:, None], lam_max[pr][:, None]
+    outside = (lhi <= E) | (llo >= LM) | ~valid_cell
+    inside = (llo > E) & (lhi < LM)
     pos = F > 0
     small = np.abs(F) <= ftol
-    root_ray = [np.nonzero(small)[0]]
-    root_t = [np.broadcast_to(t, F.shape)[small]]
-    bi, bj = np.nonzero(pos[:, :-1] != pos[:, 1:])
-    br_ray, br_a, br_b = [bi], [t[bj]], [t[bj + 1]]
-    br_fa, br_fb = [F[bi, bj]], [F[bi, bj + 1]]
+    change = (pos[:, :-1] != pos[:, 1:]) & ~outside
+    # sure hits: a sign change inside the ray's range
+    sure = change & inside
+    out[pr[sure.any(axis=1)]] = True
+    live = ~out[pr]
     F0, F1, G0, G1 = F[:, :-1], F[:, 1:], dF[:, :-1], dF[:, 1:]
     turn = (
-        (pos[:, :-1] == pos[:, 1:])
-        & ~small[:, :-1]
-        & ~small[:, 1:]
+        ~change & ~outside & live[:, None]
+        & ~small[:, :-1] & ~small[:, 1:]
         & (((F0 > 0) & (G0 < 0) & (G1 > 0)) | ((F0 < 0) & (G0 > 0) & (G1 < 0)))
+    )  # fmt: skip
+    root_p, root_t = [], []
+    zi, zj = np.nonzero(small & live[:, None] & (j <= m))
+    root_p.append(zi)
+    root_t.append(t[zi, zj])
+    bi, bj = np.nonzero(change & ~inside & live[:, None])
+    br_p, br_a, br_b, br_fa, br_fb = (
+        [bi],
+        [t[bi, bj]],
+        [t[bi, bj + 1]],
+        [F[bi, bj]],
+        [F[bi, bj + 1]],
     )
-    ei, ej = np.nonzero(turn)
 
-    def f_at(x: np.ndarray, ray: np.ndarray) -> np.ndarray:
+    def f_at(x: np.ndarray, p: np.ndarray) -> np.ndarray:
         rr, zz = surface.rz(x)
-        h = zz - hs[ray]
-        return c2[ray] * (rr * rr - d2[ray]) - k2[ray] * h * h
+        h = zz - hs[pr[p]]
+        return (c * c)[pr[p]] * (rr * rr - d2[pr[p]]) - k2[pr[p]] * h * h
 
+    ei, ej = np.nonzero(turn)
     if len(ei):
 
-        def df_at(x: np.ndarray, sel: np.ndarray) -> np.ndarray:
-            ray = ei[sel]
+        def d_dd(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            p = pr[ei[sel]]
             rr, zz = surface.rz(x)
             dr, dzz = surface.drz(x)
-            return 2 * (c2[ray] * rr * dr - k2[ray] * (zz - hs[ray]) * dzz)
+            ddr, ddz = surface.ddrz(x)
+            cc, kk, h = (c * c)[p], k2[p], zz - hs[p]
+            return (
+                2 * (cc * rr * dr - kk * h * dzz),
+                2 * (cc * (dr * dr + rr * ddr) - kk * (dzz * dzz + h * ddz)),
+            )
 
-        te = _illinois(df_at, t[ej], t[ej + 1], G0[ei, ej], G1[ei, ej], 4e-16 * span)
+        # F is flat at its extremum: t to 1e-9 gives F there to rounding level
+        te = _newton(d_dd, t[ei, ej], t[ei, ej + 1], G0[ei, ej], G1[ei, ej], 1e-9 * span, 0.0)
         fe = f_at(te, ei)
         flip = (fe > 0) != (F0[ei, ej] > 0)
-        touch = ~flip & (np.abs(fe) <= ftol)
-        root_ray.append(ei[touch])
+        touch = np.abs(fe) <= ftol
+        root_p.append(ei[touch])
         root_t.append(te[touch])
         fi, fj, tf, ff = ei[flip], ej[flip], te[flip], fe[flip]
-        br_ray += [fi, fi]
-        br_a += [t[fj], tf]
-        br_b += [tf, t[fj + 1]]
+        br_p += [fi, fi]
+        br_a += [t[fi, fj], tf]
+        br_b += [tf, t[fi, fj + 1]]
         br_fa += [F0[fi, fj], ff]
         br_fb += [ff, F1[fi, fj]]
-    ray = np.concatenate(br_ray)
-    if len(ray):
-        a, b = np.concatenate(br_a), np.concatenate(br_b)
+    bp = np.concatenate(br_p)
+    if len(bp):
+        a_, b_ = np.concatenate(br_a), np.concatenate(br_b)
         fa, fb = np.concatenate(br_fa), np.concatenate(br_fb)
-        x = _illinois(lambda x, sel: f_at(x, ray[sel]), a, b, fa, fb, 4e-16 * span)
-        root_ray.append(ray)
-        root_t.append(x)
-    rr, tt = np.concatenate(root_ray), np.concatenate(root_t)
-    hit = np.zeros(len(c), bool)
-    if not len(rr):
-        return hit
+
+        def f_df(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            p = pr[bp[sel]]
+            rr, zz = surface.rz(x)
+            dr, dzz = surface.drz(x)
+            h = zz - hs[p]
+            cc = (c * c)[p]
+            return cc * (rr * rr - d2[p]) - k2[p] * h * h, 2 * (cc * rr * dr - k2[p] * h * dzz)
+
+        root_p.append(bp)
+        root_t.append(_newton(f_df, a_, b_, fa, fb, 4e-16 * span, NEWTON_FTOL * size * size))
+    rp, tt = np.concatenate(root_p), np.concatenate(root_t)
+    if not len(rp):
+        return
+    rr = pr[rp]
     rho_r, z_r = surface.rz(tt)
     h = z_r - hs[rr]
     cr, k = c[rr], np.sqrt(k2[rr])
@@ -195,5 +314,4 @@ def _scan(
             lam.append(np.where(ok, ss[rr] + sign * half, np.nan))
     for lm in lam:
         good = (lm > eps[rr]) & (lm < lam_max[rr])
-        hit[rr[good]] = True
-    return hit
+        out[rr[good]] = True

@@ -75,6 +75,17 @@ def _frame(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return e1, e2, a
 
 
+def _pair(value: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """A profile's ``(rho, z)`` as two float arrays of ``shape``."""
+    r, z = value
+    r, z = np.asarray(r, float), np.asarray(z, float)
+    if r.shape != shape:
+        r = np.broadcast_to(r, shape)
+    if z.shape != shape:
+        z = np.broadcast_to(z, shape)
+    return r, z
+
+
 def _axis(value: Any) -> np.ndarray:
     return vector3("SurfaceOfRevolution", "axis", value, nonzero=True)
 
@@ -186,11 +197,7 @@ class SurfaceOfRevolution(Surface):
     def rz(self, t: Any) -> tuple[np.ndarray, np.ndarray]:
         """``(rho(t), z(t))`` as float arrays shaped like ``t``."""
         t = np.asarray(t, dtype=float)
-        rho, z = self.profile(t)
-        return (
-            np.broadcast_to(np.asarray(rho, float), t.shape),
-            np.broadcast_to(np.asarray(z, float), t.shape),
-        )
+        return _pair(self.profile(t), t.shape)
 
     def _fd(self, t: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
         def f(x: np.ndarray) -> np.ndarray:
@@ -206,10 +213,7 @@ class SurfaceOfRevolution(Surface):
         der = getattr(self.profile, "derivative", None)
         if der is None:
             return self._fd(t, 1)
-        r, z = der(t)
-        return np.broadcast_to(np.asarray(r, float), t.shape), np.broadcast_to(
-            np.asarray(z, float), t.shape
-        )
+        return _pair(der(t), t.shape)
 
     def ddrz(self, t: Any) -> tuple[np.ndarray, np.ndarray]:
         """``(rho''(t), z''(t))``."""
@@ -217,10 +221,7 @@ class SurfaceOfRevolution(Surface):
         der = getattr(self.profile, "second_derivative", None)
         if der is None:
             return self._fd(t, 2)
-        r, z = der(t)
-        return np.broadcast_to(np.asarray(r, float), t.shape), np.broadcast_to(
-            np.asarray(z, float), t.shape
-        )
+        return _pair(der(t), t.shape)
 
     # -- what it is -------------------------------------------------------------
     @property
