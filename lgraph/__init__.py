@@ -18,7 +18,9 @@ from .curves import Curve, CurveBatch, CurveOnSurface
 from .drawing import HIDDEN_STYLE, Drawing, Page, PlacedLabel, Stroke, Style
 from .families import Contour, Family, LinesOfCurvature, ParameterLines, Umbilics
 from .geometry.transforms import Transform, rotate, scale, translate
+from .level_lines import LevelLines
 from .objects import Label, Point
+from .parabolic import ParabolicLines
 from .projectors import CentralProjector, ParallelProjector, Projector
 from .scene import Group, Node, Scene
 from .scenefile import SceneFileError, load_scene_file
@@ -129,3 +131,4 @@ __all__ += ["load_scene_file", "SceneFileError"]
 __all__ += ["Label", "Point", "PlacedLabel", "Group"]
 __all__ += ["SurfaceOfRevolution", "Pseudosphere"]
 __all__ += ["Profile", "named_profile", "profile_from_points"]
+__all__ += ["LevelLines", "ParabolicLines"]

@@ -14,12 +14,21 @@ from lgraph.surfaces._revolution_contour import contour_residual
 
 EGG = lg.SurfaceOfRevolution(lg.named_profile("egg"), (0, np.pi))
 VASE = lg.SurfaceOfRevolution(lg.named_profile("vase"), (0, 3.0))
-TORUS = lg.SurfaceOfRevolution(lg.named_profile("circle", center=(2.0, 0.0), radius=0.7), (0, 2 * np.pi))
+TORUS = lg.SurfaceOfRevolution(
+    lg.named_profile("circle", center=(2.0, 0.0), radius=0.7), (0, 2 * np.pi)
+)
 TILTED = lg.SurfaceOfRevolution(lg.named_profile("egg"), (0, np.pi), axis=(1, 2, 2))
 HALF = lg.SurfaceOfRevolution(lg.named_profile("vase"), (0, 3.0), angle_range=(0.3, 3.5))
 # a profile without analytic derivatives (finite differences)
 PLAIN = lg.SurfaceOfRevolution(lambda t: (1.2 + 0.3 * np.cos(2 * t), t), (-1.5, 1.5))
-SURFACES = {"egg": EGG, "vase": VASE, "torus": TORUS, "tilted": TILTED, "half": HALF, "plain": PLAIN}
+SURFACES = {
+    "egg": EGG,
+    "vase": VASE,
+    "torus": TORUS,
+    "tilted": TILTED,
+    "half": HALF,
+    "plain": PLAIN,
+}
 PROJECTORS = {
     "par": lg.ParallelProjector(direction=(1, -1.3, 0.7)),
     "side": lg.ParallelProjector(direction=(1, 0.5, 0)),  # perpendicular to the z axis
@@ -145,7 +154,11 @@ def test_contour_points_have_normal_perpendicular_to_view(name, pname):
     for b in batches:
         _, xyz, uv = _eval(b, 401)
         n = s.normal(uv[:, 0], uv[:, 1])
-        w = p.eye - xyz if isinstance(p, lg.CentralProjector) else np.broadcast_to(p.frame[2], xyz.shape)
+        w = (
+            p.eye - xyz
+            if isinstance(p, lg.CentralProjector)
+            else np.broadcast_to(p.frame[2], xyz.shape)
+        )
         w = w / np.linalg.norm(w, axis=1, keepdims=True)
         ok = np.linalg.norm(np.cross(*s.derivatives(uv[:, 0], uv[:, 1])), axis=1) > 1e-9
         assert np.abs(np.einsum("ij,ij->i", n, w)[ok]).max() < 1e-10

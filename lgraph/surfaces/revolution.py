@@ -323,6 +323,24 @@ class SurfaceOfRevolution(Surface):
         roots = roots[~self._at_pole(roots)]
         return parameter_line_batches(self, np.unique(roots), [], "parabolic", "parabolic")
 
+    def level_lines(self, direction: Any, values: Any) -> list[CurveBatch] | None:
+        """Sections by planes ``x . direction = value``: parallels when the
+        direction is the axis (roots of ``z(t) = +-value``), else None."""
+        from ..families import parameter_line_batches
+
+        d = np.asarray(direction, float)
+        d = d / np.linalg.norm(d)
+        cos = float(d @ self.frame[2])
+        if abs(abs(cos) - 1) > 1e-14:
+            return None
+        roots = [
+            self._roots_in_t(lambda t, v=v: cos * self.rz(t)[1] - v)
+            for v in np.atleast_1d(np.asarray(values, float)).tolist()
+        ]
+        r = np.concatenate(roots) if roots else np.empty(0)
+        r = r[~self._at_pole(r)]
+        return parameter_line_batches(self, r, [], "level", "level")
+
     def _at_pole(self, t: np.ndarray) -> np.ndarray:
         rho, _ = self.rz(t)
         return np.abs(rho) <= 1e-9 * self.size
