@@ -93,11 +93,11 @@ def test_axial_levels_of_a_surface_of_revolution_are_parallels():
 def test_functions_of_the_point_and_of_the_parameters():
     s = lg.Torus(2, 0.8)
     f = lg.LevelLines(function=lambda x: x[..., 0] ** 2 + x[..., 1], values=[1.0, 2.5])
-    for idx, xyz, uv, _ in _points(f.batches(s, None)):
+    for _idx, xyz, uv, _ in _points(f.batches(s, None)):
         r = xyz[:, 0] ** 2 + xyz[:, 1]
         assert np.all((np.abs(r - 1.0) < 1e-10) | (np.abs(r - 2.5) < 1e-10))
     g = lg.LevelLines(function=lambda u1, u2: np.sin(u1) + np.cos(u2), argument="uv", values=[0.5])
-    for idx, xyz, uv, _ in _points(g.batches(s, None)):
+    for _idx, xyz, uv, _ in _points(g.batches(s, None)):
         assert np.abs(np.sin(uv[:, 0]) + np.cos(uv[:, 1]) - 0.5).max() < 1e-10
 
 
@@ -106,7 +106,7 @@ def test_levels_of_the_gaussian_curvature():
     ref = _numeric_copy(s)
     fam = lg.LevelLines(function="gaussian_curvature", values=[-1.0])
     (b,) = fam.batches(s, None)
-    for idx, xyz, uv, _ in _points([b]):
+    for _idx, _xyz, uv, _ in _points([b]):
         k1, k2 = ref.principal_curvatures(uv[:, 0], uv[:, 1])
         assert np.abs(k1 * k2 + 1).max() < 1e-6
     # K = -36 c^2 (x^2 + y^2) / (1 + |grad|^2)^2: the level -1 is a closed loop round the origin
@@ -158,7 +158,7 @@ def test_closed_form_parabolic_lines_have_zero_gaussian_curvature(surface):
     batches = lg.ParabolicLines().batches(surface, None)
     assert batches
     d = surface.domain
-    for idx, xyz, uv, _ in _points(batches, 41):
+    for _idx, _xyz, uv, _ in _points(batches, 41):
         k1, k2 = ref.principal_curvatures(uv[:, 0], uv[:, 1])
         assert np.abs(k1 * k2).max() < 1e-6
         # and K changes sign across the line
