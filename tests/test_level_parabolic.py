@@ -93,11 +93,11 @@ def test_axial_levels_of_a_surface_of_revolution_are_parallels():
 def test_functions_of_the_point_and_of_the_parameters():
     s = lg.Torus(2, 0.8)
     f = lg.LevelLines(function=lambda x: x[..., 0] ** 2 + x[..., 1], values=[1.0, 2.5])
-    for _idx, xyz, uv, _ in _points(f.batches(s, None)):
+    for _idx, xyz, _uv, _ in _points(f.batches(s, None)):
         r = xyz[:, 0] ** 2 + xyz[:, 1]
         assert np.all((np.abs(r - 1.0) < 1e-10) | (np.abs(r - 2.5) < 1e-10))
     g = lg.LevelLines(function=lambda u1, u2: np.sin(u1) + np.cos(u2), argument="uv", values=[0.5])
-    for _idx, xyz, uv, _ in _points(g.batches(s, None)):
+    for _idx, _xyz, uv, _ in _points(g.batches(s, None)):
         assert np.abs(np.sin(uv[:, 0]) + np.cos(uv[:, 1]) - 0.5).max() < 1e-10
 
 
