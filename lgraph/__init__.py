@@ -24,6 +24,7 @@ from .parabolic import ParabolicLines
 from .projectors import CentralProjector, ParallelProjector, Projector
 from .scene import Group, Node, Scene
 from .scenefile import SceneFileError, load_scene_file
+from .self_intersection import SelfIntersection
 from .surface_curves import (
     Arrow,
     AsymptoticLines,
@@ -131,4 +132,4 @@ __all__ += ["load_scene_file", "SceneFileError"]
 __all__ += ["Label", "Point", "PlacedLabel", "Group"]
 __all__ += ["SurfaceOfRevolution", "Pseudosphere"]
 __all__ += ["Profile", "named_profile", "profile_from_points"]
-__all__ += ["LevelLines", "ParabolicLines"]
+__all__ += ["LevelLines", "ParabolicLines", "SelfIntersection"]
