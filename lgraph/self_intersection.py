@@ -129,7 +129,7 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
         b[act] += step[:, 1:]
         ok[act] &= good
         # rows that wander far from their edge and patch are lost causes
-        near = (s[act] > -4) & (s[act] < 5) & np.all(np.abs(b[act] - bc[act]) < 8 * h, axis=1)
+        near = (s[act] > -4) & (s[act] < 5)
         ok[act] &= near
         moving = np.abs(step).max(axis=1) > 1e-15 * (1 + np.abs(s[act]))
         act = act[good & near & moving]
@@ -187,25 +187,31 @@ def self_intersection_points(surface: Surface) -> dict:
                 for ax in (0, 1):  # on the drawn patch (a shifted cell may overhang it)
                     if not d.periodic[ax]:
                         ok &= (pa[:, ax] >= d.range(ax)[0]) & (pa[:, ax] <= d.range(ax)[1])
-                # the partner must lie near its patch
-                bi = (b - cb) / h
-                ok &= np.all(np.abs(bi) <= 2, axis=1)
+                # the partner must be another point of the patch, not the trivial b = a
+                gap = np.abs(b - pa)
+                for ax in (0, 1):
+                    if d.periodic[ax]:
+                        gap[:, ax] = np.abs(
+                            np.mod(gap[:, ax] + 0.5 * n * h[ax], n * h[ax]) - 0.5 * n * h[ax]
+                        )
+                ok &= np.any(gap > NEAR_CELLS * h, axis=1)
+                bw = d.wrap(b, clip=False)
+                for ax in (0, 1):
+                    if not d.periodic[ax]:
+                        lo_, hi_ = d.range(ax)
+                        ok &= (bw[:, ax] >= lo_ - 1e-9 * h[ax]) & (bw[:, ax] <= hi_ + 1e-9 * h[ax])
+                b = bw
                 if not ok.any():
                     continue
                 own = np.stack([ci[ok], cj[ok]], axis=1)
                 other = own + np.array(nb)
-                A.append(pa[ok])
+                A.append(d.wrap(pa[ok], clip=False))
                 B.append(b[ok])
                 C.append(np.stack([_cell_id(own, n, d), _cell_id(other, n, d)], axis=1))
     if not A:
         empty = np.empty((0, 2))
         return {"a": empty, "b": empty, "cells": np.empty((0, 2), int), "n": n}
     a, b, c = np.concatenate(A), np.concatenate(B), np.concatenate(C)
-    # each point has two preimages: keep the one that comes first along a fixed
-    # generic direction of the parameter plane (so every 3-D point is drawn once)
-    key = np.array([0.7548776662466927, 0.5698402909980532]) / (n * h)
-    first_of_two = a @ key < b @ key
-    a, b, c = a[first_of_two], b[first_of_two], c[first_of_two]
     # the same crossing found from two cells: one copy (cells and position)
     key = np.round(np.column_stack([np.sort(c, axis=1), a / h, b / h]), 6)
     _, first = np.unique(key, axis=0, return_index=True)
@@ -274,10 +280,38 @@ def _trace(points: dict, surface: Surface) -> list[tuple[np.ndarray, bool]]:
     return out
 
 
-def _within(a: np.ndarray, other: np.ndarray, h: np.ndarray) -> bool:
-    """Whether every point of ``a`` is within about a patch of a point of ``other``."""
+def _near(a: np.ndarray, other: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """For each point of ``a``: whether a point of ``other`` is within about a cell."""
     dist = np.abs((a[:, None, :] - other[None, :, :]) / h).max(axis=2).min(axis=1)
-    return bool(np.all(dist <= 1.5))
+    return dist <= 1.5
+
+
+def _one_preimage(lines: list, pts: dict, h: np.ndarray) -> list[tuple[np.ndarray, bool]]:
+    """Of the two preimages of each curve, one: ``(index order, closed)`` pieces.
+
+    A traced polyline whose partners lie on another polyline already taken is
+    that one's other preimage (dropped; the same curve seen from a neighbouring
+    cell column is dropped the same way).  A polyline that is its own partner
+    (the preimages join, as at a Whitney umbrella's pinch point) keeps the
+    parts whose point comes first along a fixed generic direction."""
+    a_all, b_all = pts["a"], pts["b"]
+    key = np.array([0.7548776662466927, 0.5698402909980532]) / h
+    taken: list[np.ndarray] = []
+    out: list[tuple[np.ndarray, bool]] = []
+    for idx, closed in sorted(lines, key=lambda line: -len(line[0])):
+        a, b = a_all[idx], b_all[idx]
+        if any(_near(b, o, h).mean() > 0.5 or _near(a, o, h).all() for o in taken):
+            continue
+        taken.append(a)
+        if _near(b, a, h).mean() <= 0.5:
+            out.append((idx, closed))
+            continue
+        first = a @ key < b @ key
+        edges = np.flatnonzero(np.diff(np.r_[0, first.astype(int), 0]))
+        for s0, s1 in zip(edges[::2], edges[1::2]):
+            if s1 - s0 >= 3:
+                out.append((idx[s0:s1], False))
+    return out
 
 
 def _project(surface: Surface, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -350,14 +384,12 @@ class SelfIntersection(Family):
         a_all, b_all = pts["a"], pts["b"]
         d = surface.domain
         h = np.array([d.span(0), d.span(1)]) / pts["n"]
-        taken: list[np.ndarray] = []
-        branches = []
-        for idx, closed in sorted(lines, key=lambda line: -len(line[0])):
-            a = a_all[idx]
-            if any(_within(a, other, h) for other in taken):
-                continue
-            taken.append(a)
-            branches.append(_Branch(surface, a, b_all[idx], closed))
+        branches = [
+            _Branch(surface, a_all[i], b_all[i], closed)
+            for i, closed in _one_preimage(lines, pts, h)
+        ]
+        if not branches:
+            return []
 
         def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             a = np.empty((len(t), 2))
