@@ -150,7 +150,9 @@ class LevelLines(Family):
         eq=False,
     )
     values: tuple[float, ...] | None = attrs.field(default=None, converter=_values, kw_only=True)
-    function: Any = attrs.field(default=None, converter=_function, kw_only=True, eq=False)
+    function: Callable[..., Any] | str | None = attrs.field(
+        default=None, converter=_function, kw_only=True, eq=False
+    )
     argument: str = attrs.field(default="point", kw_only=True)
     grid: int = attrs.field(default=193, validator=count("LevelLines", 9, 4097), kw_only=True)
 

@@ -319,3 +319,85 @@ def test_renders_with_hidden_lines_consistent_with_brute_force():
         ref, margin = _march("egg", mid, v, smax, start=1e-3, n=4000)
         clear = margin > 5e-3
         assert np.all(ref[clear] == (not s.visible))
+
+
+# -- scene files --------------------------------------------------------------------
+SCENE = """
+[projector]
+kind = "central"
+azimuth = 30
+elevation = 25
+distance = 14
+
+[[object]]
+surface = "surface_of_revolution"
+params = {{ profile = {profile}, angle_range = [0, 4.5] }}
+families = [{{ name = "lines_of_curvature", n1 = 4, n2 = 6 }},
+            {{ name = "level_lines", n = 3, direction = [1, 0, 1] }},
+            {{ name = "level_lines", function = "gaussian_curvature", values = [0.2] }},
+            "parabolic_lines"]
+
+[[object]]
+surface = "torus"
+params = {{ R = 2, r = 0.5 }}
+transform = [{{ translate = [0, 0, 4] }}]
+families = ["parabolic_lines", {{ name = "level_lines", values = [0.1, 0.3] }}]
+"""
+
+
+@pytest.mark.parametrize(
+    "profile", ['"egg"', '"vase"', "[[0, 0], [1, 0.2], [1.3, 1], [0.6, 2], [0.8, 2.6]]"]
+)
+def test_scene_files_know_the_new_class_and_families(tmp_path, profile):
+    path = tmp_path / "s.toml"
+    path.write_text(SCENE.format(profile=profile), encoding="utf-8")
+    scene, projector, _ = lg.load_scene_file(path)
+    (node, torus) = scene.nodes
+    assert isinstance(node.surface, lg.SurfaceOfRevolution)
+    assert [type(f).__name__ for f in node.families] == [
+        "LinesOfCurvature", "LevelLines", "LevelLines", "ParabolicLines"
+    ]  # fmt: skip
+    d = scene.render(projector)
+    fams = {s.family for s in d.strokes}
+    assert {"curvature", "level", "parabolic", "contour"} <= fams
+
+
+@pytest.mark.parametrize(
+    "params, message",
+    [
+        ('{ profile = "spiral" }', "profile"),
+        ('{ profile = "egg", t_range = [1, 1] }', "t_range"),
+        ("{ profile = [[1, 0], [-1, 1], [1, 2], [1, 3]] }", "rho must be >= 0"),
+    ],
+)
+def test_scene_file_errors_for_bad_profiles(tmp_path, params, message):
+    text = f"""
+[projector]
+kind = "parallel"
+azimuth = 30
+elevation = 20
+[[object]]
+surface = "surface_of_revolution"
+params = {params}
+"""
+    path = tmp_path / "bad.toml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(lg.SceneFileError, match=message):
+        lg.load_scene_file(path)
+
+
+def test_scene_file_level_lines_with_no_values_is_an_error(tmp_path):
+    text = """
+[projector]
+kind = "parallel"
+azimuth = 30
+elevation = 20
+[[object]]
+surface = "torus"
+params = { R = 2, r = 0.5 }
+families = [{ name = "level_lines", values = [] }]
+"""
+    path = tmp_path / "bad.toml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(lg.SceneFileError, match="values must be a non-empty list"):
+        lg.load_scene_file(path)

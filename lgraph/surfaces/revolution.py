@@ -44,7 +44,7 @@ ValueError: SurfaceOfRevolution: t_range must be a pair (lo, hi) ... with lo < h
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import attrs
@@ -54,7 +54,7 @@ from .._tolerance import FD_STEP_2
 from .._validate import count, interval, vector3
 from ..curves import _d1, _d2
 from ._base import Domain, Surface
-from .profiles import Profile, named_profile
+from .profiles import Profile, named_profile, profile_from_points
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
@@ -86,6 +86,25 @@ def _pair(value: Any, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
     return r, z
 
 
+def _as_profile(value: Any) -> Any:
+    """A profile: a callable as given, a name of a built-in profile
+    (:data:`~lgraph.surfaces.profiles.PROFILES`, default parameters) or knots
+    ``[[rho, z], ...]`` interpolated by a spline."""
+    if callable(value):
+        return value
+    if isinstance(value, str):
+        try:
+            return named_profile(value)
+        except ValueError as exc:
+            raise ValueError(f"SurfaceOfRevolution: profile: {exc}") from None
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return profile_from_points(value)
+    raise TypeError(
+        "SurfaceOfRevolution: profile must be callable, a profile name or [[rho, z], ...] "
+        f"knots, got {type(value).__name__}"
+    )
+
+
 def _axis(value: Any) -> np.ndarray:
     return vector3("SurfaceOfRevolution", "axis", value, nonzero=True)
 
@@ -96,13 +115,16 @@ class SurfaceOfRevolution(Surface):
 
     Parameters
     ----------
-    profile : callable or Profile
+    profile : callable, Profile, str or knots
         ``profile(t)`` takes an array ``t`` and returns ``(rho, z)`` (two arrays
         like ``t``, ``rho >= 0``).  A :class:`~lgraph.surfaces.profiles.Profile`
         may carry analytic derivatives; otherwise eighth-order central
-        differences are used.
-    t_range : (lo, hi)
-        The drawn part of the profile; ends with ``rho = 0`` are poles.
+        differences are used.  A string names a built-in profile
+        (``"egg"``, ``"vase"``, ``"pseudosphere"``, ``"catenoid"``, ``"circle"``);
+        a list of ``[rho, z]`` knots is interpolated by a cubic spline.
+    t_range : (lo, hi), optional
+        The drawn part of the profile (default: the profile's natural range);
+        ends with ``rho = 0`` are poles.
     axis : 3 numbers
         Direction of the axis through the origin (default ``z``).
     angle_range : (lo, hi)
@@ -121,9 +143,12 @@ class SurfaceOfRevolution(Surface):
     ((True, False), (False, True))
     """
 
-    profile: Callable[[np.ndarray], Any] = attrs.field()
-    t_range: tuple[float, float] = attrs.field(
-        converter=lambda v: interval("SurfaceOfRevolution", "t_range", v)
+    profile: Callable[[np.ndarray], Any] | str | Sequence[Sequence[float]] = attrs.field(
+        converter=_as_profile
+    )
+    t_range: tuple[float, float] | None = attrs.field(
+        default=None,
+        converter=lambda v: None if v is None else interval("SurfaceOfRevolution", "t_range", v),
     )
     axis: np.ndarray = attrs.field(default=(0.0, 0.0, 1.0), converter=_axis, kw_only=True)
     angle_range: tuple[float, float] = attrs.field(
@@ -139,14 +164,15 @@ class SurfaceOfRevolution(Surface):
     hit_cost = 12.0
     hit_call_cost = 800.0
 
-    @profile.validator
-    def _check_profile(self, _a: Any, v: Any) -> None:
-        if not callable(v):
-            raise TypeError(
-                f"SurfaceOfRevolution: profile must be callable, got {type(v).__name__}"
-            )
-
     def __attrs_post_init__(self) -> None:
+        if self.t_range is None:
+            natural = getattr(self.profile, "t_range", None)
+            if natural is None:
+                raise ValueError(
+                    "SurfaceOfRevolution: t_range is required for a profile without a "
+                    "natural parameter range"
+                )
+            object.__setattr__(self, "t_range", interval("SurfaceOfRevolution", "t_range", natural))
         span = self.angle_range[1] - self.angle_range[0]
         if span > _TWO_PI * (1 + 1e-12):
             raise ValueError(
