@@ -30,7 +30,7 @@ cells straddling those limits are refined (safeguarded Newton on ``F``).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -189,6 +189,46 @@ def _newton(f_df, a, b, fa, fb, xtol, ftol):  # noqa: ANN001, ANN202
     return x
 
 
+def _trimmed(surface: SurfaceOfRevolution, ray, pr, p, a, b, za, zb, dza, span):  # noqa: ANN001, ANN202
+    """Cells ``[a, b]`` (pairs ``p``, ``z`` monotone) cut to ``eps < lam < lam_max``,
+    ``lam = (z - o_a) / c``: the cell tuple of :func:`_narrow` (all inside the range)."""
+    c, k2, d2, hs, ss, eps, lam_max = ray
+    r = pr[p]
+    oa = hs[r] - c[r] * ss[r]
+    lam_a, lam_b = (za - oa) / c[r], (zb - oa) / c[r]
+    lo_t, hi_t = a.copy(), b.copy()
+    keep = np.ones(len(a), bool)
+    for limit, above in ((eps[r], True), (lam_max[r], False)):
+        fin = np.isfinite(limit)
+        za_ = np.where(fin, oa + c[r] * np.where(fin, limit, 0.0), 0.0)
+        ina = (lam_a > limit) == above
+        inb = (lam_b > limit) == above
+        keep &= ina | inb
+        cut = fin & (ina != inb) & keep
+        if cut.any():
+            k = np.flatnonzero(cut)
+            zt = za_[k]
+
+            def f_df(x: np.ndarray, sel: np.ndarray, zt: np.ndarray = zt, k: np.ndarray = k) -> Any:
+                return surface.rz(x)[1] - zt[sel], surface.drz(x)[1]
+
+            tc = _newton(f_df, lo_t[k], hi_t[k], za[k] - zt, zb[k] - zt, 4e-16 * span, 0.0)
+            # the end outside the range moves to the cut
+            lo_t[k] = np.where(ina[k], lo_t[k], tc)
+            hi_t[k] = np.where(ina[k], tc, hi_t[k])
+    p, lo_t, hi_t = p[keep], lo_t[keep], hi_t[keep]
+    r = pr[p]
+    both = np.concatenate([lo_t, hi_t])
+    rr, zz = surface.rz(both)
+    dr, dzz = surface.drz(both)
+    rp = np.concatenate([r, r])
+    cc, kk, h = (c * c)[rp], k2[rp], zz - hs[rp]
+    f = cc * (rr * rr - d2[rp]) - kk * h * h
+    df = 2 * (cc * rr * dr - kk * h * dzz)
+    n = len(p)
+    return (p, lo_t, hi_t, f[:n], f[n:], df[:n], df[n:], np.ones(n, bool))
+
+
 def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None:  # noqa: ANN001
     """Scan the (ray, block) pairs on the fine grid; set ``out[ray]`` for hits."""
     c, k2, d2, hs, ss, eps, lam_max = ray
@@ -224,41 +264,59 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
     outside = (lhi <= E) | (llo >= LM) | ~valid_cell
     inside = (llo > E) & (lhi < LM)
     pos = F > 0
-    small = np.abs(F) <= ftol
+    # cells of steep rays straddling lam = eps or lam = lam_max where z is monotone:
+    # cut to the part with eps < lam < lam_max (lam = (z - o_a) / c along a steep
+    # line), so a ray's own root (lam = 0) is never refined
+    dz0, dz1 = dz[:, :-1], dz[:, 1:]
+    trim = steep & ~outside & ~inside & (dz0 * dz1 > 0)
+    outside = outside | trim
     change = (pos[:, :-1] != pos[:, 1:]) & ~outside
     # sure hits: a sign change inside the ray's range
     sure = change & inside
     out[pr[sure.any(axis=1)]] = True
-    live = ~out[pr]
     F0, F1, G0, G1 = F[:, :-1], F[:, 1:], dF[:, :-1], dF[:, 1:]
-    turn = (
-        ~change & ~outside & live[:, None]
-        & ~small[:, :-1] & ~small[:, 1:]
-        & (((F0 > 0) & (G0 < 0) & (G1 > 0)) | ((F0 < 0) & (G0 > 0) & (G1 < 0)))
-    )  # fmt: skip
-    root_p, root_t = [], []
-    zi, zj = np.nonzero(small & live[:, None] & (j <= m))
-    root_p.append(zi)
-    root_t.append(t[zi, zj])
-    bi, bj = np.nonzero(change & ~inside & live[:, None])
-    br_p, br_a, br_b, br_fa, br_fb = (
-        [bi],
-        [t[bi, bj]],
-        [t[bi, bj + 1]],
-        [F[bi, bj]],
-        [F[bi, bj + 1]],
+    # cells to search: (pair, t_a, t_b, F_a, F_b, F'_a, F'_b, whole cell inside the range)
+    ci, cj = np.nonzero(~outside)
+    cells = [(ci, t[ci, cj], t[ci, cj + 1], F0[ci, cj], F1[ci, cj], G0[ci, cj], G1[ci, cj],
+              inside[ci, cj])]  # fmt: skip
+    ti, tj = np.nonzero(trim & ~out[pr][:, None])
+    if len(ti):
+        cells.append(_trimmed(surface, ray, pr, ti, t[ti, tj], t[ti, tj + 1],
+                              z[ti, tj], z[ti, tj + 1], dz0[ti, tj], span))  # fmt: skip
+    ci, ta, tb, fa0, fb0, ga0, gb0, whole = (np.concatenate(x) for x in zip(*cells))
+    live = ~out[pr[ci]]
+    ci, ta, tb, fa0, fb0, ga0, gb0, whole = (
+        x[live] for x in (ci, ta, tb, fa0, fb0, ga0, gb0, whole)
     )
+    chg = (fa0 > 0) != (fb0 > 0)
+    out[pr[ci[chg & whole]]] = True
+    # a cut end lies within the self-hit distance of the ray's own root, where F is
+    # small without a root of interest: only grid nodes count as touching roots
+    node = np.concatenate(
+        [np.ones(len(cells[0][0]), bool)] + [np.zeros(len(x[0]), bool) for x in cells[1:]]
+    )[live]
+    sa, sb = node & (np.abs(fa0) <= ftol), node & (np.abs(fb0) <= ftol)
+    turn = (
+        ~chg
+        & ~sa
+        & ~sb
+        & (((fa0 > 0) & (ga0 < 0) & (gb0 > 0)) | ((fa0 < 0) & (ga0 > 0) & (gb0 < 0)))
+    )
+    root_p, root_t = [ci[sa], ci[sb]], [ta[sa], tb[sb]]
+    bsel = chg & ~whole
+    br_p, br_a, br_b, br_fa, br_fb = [ci[bsel]], [ta[bsel]], [tb[bsel]], [fa0[bsel]], [fb0[bsel]]
 
     def f_at(x: np.ndarray, p: np.ndarray) -> np.ndarray:
         rr, zz = surface.rz(x)
         h = zz - hs[pr[p]]
         return (c * c)[pr[p]] * (rr * rr - d2[pr[p]]) - k2[pr[p]] * h * h
 
-    ei, ej = np.nonzero(turn)
+    ei = np.flatnonzero(turn)
     if len(ei):
+        ep = ci[ei]
 
         def d_dd(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            p = pr[ei[sel]]
+            p = pr[ep[sel]]
             rr, zz = surface.rz(x)
             dr, dzz = surface.drz(x)
             ddr, ddz = surface.ddrz(x)
@@ -269,18 +327,20 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
             )
 
         # F is flat at its extremum: t to 1e-9 gives F there to rounding level
-        te = _newton(d_dd, t[ei, ej], t[ei, ej + 1], G0[ei, ej], G1[ei, ej], 1e-9 * span, 0.0)
-        fe = f_at(te, ei)
-        flip = (fe > 0) != (F0[ei, ej] > 0)
+        te = _newton(d_dd, ta[ei], tb[ei], ga0[ei], gb0[ei], 1e-9 * span, 0.0)
+        fe = f_at(te, ep)
+        flip = (fe > 0) != (fa0[ei] > 0)
         touch = np.abs(fe) <= ftol
-        root_p.append(ei[touch])
+        root_p.append(ep[touch])
         root_t.append(te[touch])
-        fi, fj, tf, ff = ei[flip], ej[flip], te[flip], fe[flip]
+        out[pr[ep[flip & whole[ei]]]] = True
+        fl = flip & ~whole[ei]
+        fi, tf, ff = ep[fl], te[fl], fe[fl]
         br_p += [fi, fi]
-        br_a += [t[fi, fj], tf]
-        br_b += [tf, t[fi, fj + 1]]
-        br_fa += [F0[fi, fj], ff]
-        br_fb += [ff, F1[fi, fj]]
+        br_a += [ta[ei][fl], tf]
+        br_b += [tf, tb[ei][fl]]
+        br_fa += [fa0[ei][fl], ff]
+        br_fb += [ff, fb0[ei][fl]]
     bp = np.concatenate(br_p)
     if len(bp):
         a_, b_ = np.concatenate(br_a), np.concatenate(br_b)
