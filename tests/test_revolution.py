@@ -403,3 +403,39 @@ families = [{ name = "level_lines", values = [] }]
     path.write_text(text, encoding="utf-8")
     with pytest.raises(lg.SceneFileError, match="values must be a non-empty list"):
         lg.load_scene_file(path)
+
+
+# -- the catenoid reuses the surface of revolution ------------------------------------
+@pytest.mark.parametrize("pname", ["par", "side", "cen"])
+def test_catenoid_contour_and_hits_from_the_surface_of_revolution(pname):
+    s, p = lg.Catenoid(1.0, 1.2), PROJECTORS[pname]
+    batches = s.contour(p)
+    assert batches and all(b.surface is s for b in batches)
+    for b in batches:
+        _, xyz, uv = _eval(b)
+        assert np.allclose(s.points(uv), xyz, atol=1e-12)
+        n = s.normal(uv[:, 0], uv[:, 1])  # the catenoid's own analytic derivatives
+        w = p.view_vectors(xyz)
+        w = w / np.linalg.norm(w, axis=-1, keepdims=True)
+        assert np.abs(np.einsum("ij,ij->i", n, w)).max() < 1e-10
+    rng = np.random.default_rng(11)
+    o = rng.uniform(-3, 3, (300, 3))
+    v = rng.uniform(-1.5, 1.5, (300, 3)) * [1, 1, 0.8] - o
+    v /= np.linalg.norm(v, axis=1, keepdims=True)
+    hit = s.hits(o, v, np.full(300, np.inf))
+    lam = 12.0 * np.linspace(0, 1, 20000)
+    q = o[:, None, :] + lam[None, :, None] * v[:, None, :]
+    g = np.where(
+        np.abs(q[..., 2]) <= 1.2, np.hypot(q[..., 0], q[..., 1]) - np.cosh(q[..., 2]), np.nan
+    )
+    ref = (np.sign(g[:, 1:]) * np.sign(g[:, :-1]) < 0).any(axis=1)
+    dg = np.diff(g, axis=1)
+    turn = np.zeros_like(g, bool)
+    turn[:, 1:-1] = dg[:, 1:] * dg[:, :-1] <= 0
+    with np.errstate(invalid="ignore"):
+        margin = np.nanmin(np.where(turn, np.abs(g), np.inf), axis=1)
+    clear = margin > 2e-3
+    assert clear.sum() > 200 and ref[clear].any() and (~ref[clear]).any()
+    assert np.array_equal(hit[clear], ref[clear])
+    (lc,) = lg.LinesOfCurvature(3, 4).batches(s, None)
+    assert len(lc) == 7
