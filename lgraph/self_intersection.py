@@ -24,6 +24,8 @@ A point of self-intersection has two parameter pairs, ``x(a) = x(b)`` with
 
 Curves end a patch or two short of points where the preimages meet (the
 pinch point of a Whitney umbrella), where the two sheets become tangent.
+Tested on the Whitney umbrella, a tube piercing itself and the figure-8
+Klein bottle.
 
 >>> import numpy as np
 >>> import lgraph as lg

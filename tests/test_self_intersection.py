@@ -175,3 +175,27 @@ def test_visibility_on_the_self_intersecting_umbrella_matches_brute_force(projec
     assert visible[clear].any() and (~visible[clear]).any()
     bad = clear & (hidden == visible)
     assert not bad.any(), P[bad][:5]
+
+
+def test_figure_eight_klein_bottle_meets_itself_in_a_circle():
+    """The figure-8 immersion of the Klein bottle: its cross-section's double
+    point (v = 0 and v = pi) sweeps the circle of radius R in the plane z = 0."""
+    R = 2.0
+
+    def klein(u, v):
+        u, v = np.broadcast_arrays(u, v)
+        w = R + np.cos(u / 2) * np.sin(v) - np.sin(u / 2) * np.sin(2 * v)
+        z = np.sin(u / 2) * np.sin(v) + np.cos(u / 2) * np.sin(2 * v)
+        return np.stack([w * np.cos(u), w * np.sin(u), z], -1)
+
+    s = lg.ParametricSurface(klein, (0, 2 * np.pi), (0, 2 * np.pi), periodic=(False, True))
+    pts = self_intersection_points(s)
+    assert np.abs(s.points(pts["a"]) - s.points(pts["b"])).max() < 1e-9
+    (curve,) = _evaluate(lg.SelfIntersection().batches(s, None), 301)
+    xyz, uv, _ = curve
+    assert np.abs(np.hypot(xyz[:, 0], xyz[:, 1]) - R).max() < 1e-9
+    assert np.abs(xyz[:, 2]).max() < 1e-9
+    # the whole circle: u runs over the full range, on one of the sheets v = 0 or pi
+    assert np.ptp(uv[:, 0]) > 2 * np.pi - 0.1
+    vv = np.mod(uv[:, 1], np.pi)
+    assert np.minimum(vv, np.pi - vv).max() < 1e-9
