@@ -128,7 +128,7 @@ def hits(
     pairs_r, pairs_b = [], []
     for start in range(0, n, step):
         sl = slice(start, start + step)
-        r, b = _broad(blk, oa[sl], c[sl], k2[sl], d2[sl], sstar[sl], lam_max[sl])
+        r, b = _broad(blk, oa[sl], c[sl], k2[sl], d2[sl], sstar[sl], eps[sl], lam_max[sl])
         pairs_r.append(r + start)
         pairs_b.append(b)
     pr, pb = np.concatenate(pairs_r), np.concatenate(pairs_b)
@@ -139,8 +139,8 @@ def hits(
     return out
 
 
-def _broad(blk: dict, oa, c, k2, d2, ss, lam_max) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
-    """(ray, block) pairs whose ring the ray segment ``0 < lam < lam_max`` enters."""
+def _broad(blk: dict, oa, c, k2, d2, ss, eps, lam_max) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
+    """(ray, block) pairs whose ring the ray segment ``eps < lam < lam_max`` enters."""
     C = c[:, None]
     with np.errstate(invalid="ignore", divide="ignore"):
         l1 = (blk["zlo"] - oa[:, None]) / C
@@ -149,7 +149,7 @@ def _broad(blk: dict, oa, c, k2, d2, ss, lam_max) -> tuple[np.ndarray, np.ndarra
     inslab = (oa[:, None] >= blk["zlo"]) & (oa[:, None] <= blk["zhi"])
     lo = np.where(zero, np.where(inslab, -np.inf, np.inf), np.minimum(l1, l2))
     hi = np.where(zero, np.where(inslab, np.inf, -np.inf), np.maximum(l1, l2))
-    lo = np.maximum(lo, 0.0)
+    lo = np.maximum(lo, eps[:, None])
     hi = np.minimum(hi, lam_max[:, None])
     S, K2, D2 = ss[:, None], k2[:, None], d2[:, None]
     near = np.clip(S, lo, hi)
