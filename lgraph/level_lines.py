@@ -170,7 +170,7 @@ class LevelLines(Family):
         ``f`` over the patch.  Raises ValueError where ``f`` is not finite."""
         f = self.function_of(surface)
         d = surface.domain
-        inset = [1e-7 * d.span(i) if d.poles[i] else 0.0 for i in (0, 1)]
+        inset = [1e-7 * d.span(i) if any(d.poles[i]) else 0.0 for i in (0, 1)]
         a1 = np.linspace(d.u1[0] + inset[0], d.u1[1] - inset[0], EXTENT_GRID)
         a2 = np.linspace(d.u2[0] + inset[1], d.u2[1] - inset[1], EXTENT_GRID)
         U1, U2 = np.meshgrid(a1, a2, indexing="ij")

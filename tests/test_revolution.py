@@ -74,7 +74,11 @@ def test_bad_input_is_a_clear_error(make, message):
 
 
 def test_poles_found_automatically():
-    assert EGG.poles == (True, True) and EGG.domain.poles == (True, False)
+    assert EGG.poles == (True, True) and EGG.domain.poles == ((True, True), (False, False))
+    assert lg.SurfaceOfRevolution("vase", (0, 3)).domain.poles[0] == (False, False)
+    half_egg = lg.SurfaceOfRevolution("egg", (0, 2.0))
+    assert half_egg.domain.poles[0] == (True, False)
+    assert sum(len(x) for x in half_egg.boundary()) == 1  # the rim, not the pole
     assert VASE.poles == (False, False)
     assert lg.Pseudosphere().poles == (False, False)
     b = EGG.boundary()

@@ -140,7 +140,7 @@ class SurfaceOfRevolution(Surface):
     >>> import lgraph as lg
     >>> egg = lg.SurfaceOfRevolution(lg.named_profile("egg"), (0, np.pi))
     >>> egg.domain.poles, egg.domain.periodic
-    ((True, False), (False, True))
+    (((True, True), (False, False)), (False, True))
     """
 
     profile: Callable[[np.ndarray], Any] | str | Sequence[Sequence[float]] = attrs.field(
@@ -263,7 +263,7 @@ class SurfaceOfRevolution(Surface):
             self.t_range,
             self.angle_range,
             periodic=(self.profile_closed, periodic),
-            poles=(any(self.poles), False),
+            poles=(self.poles, False),
         )
 
     @property
@@ -316,14 +316,6 @@ class SurfaceOfRevolution(Surface):
         )
 
     # -- what it draws ------------------------------------------------------------
-    def boundary(self) -> list[CurveBatch]:
-        """The parallels at the profile's ends that are not poles, and the
-        meridians at the ends of a partial turn."""
-        from ..families import parameter_line_batches
-
-        ends = [t for t, p in zip(self.t_range, self.poles) if not p and not self.profile_closed]
-        return parameter_line_batches(self, ends, self.domain.ends(1), "boundary", "boundary")
-
     def lines_of_curvature(self, n1: int, n2: int) -> list[CurveBatch]:
         """``n1`` parallels and ``n2`` meridians: the lines of curvature, exactly."""
         from ..families import parameter_line_batches
