@@ -18,10 +18,13 @@ from .curves import Curve, CurveBatch, CurveOnSurface
 from .drawing import HIDDEN_STYLE, Drawing, Page, PlacedLabel, Stroke, Style
 from .families import Contour, Family, LinesOfCurvature, ParameterLines, Umbilics
 from .geometry.transforms import Transform, rotate, scale, translate
+from .level_lines import LevelLines
 from .objects import Label, Point
+from .parabolic import ParabolicLines
 from .projectors import CentralProjector, ParallelProjector, Projector
 from .scene import Group, Node, Scene
 from .scenefile import SceneFileError, load_scene_file
+from .self_intersection import SelfIntersection
 from .surface_curves import (
     Arrow,
     AsymptoticLines,
@@ -45,10 +48,12 @@ from .surfaces import (
     HyperboloidOneSheet,
     HyperboloidTwoSheets,
     ParabolicCylinder,
+    Pseudosphere,
     Quadric,
     RuledSurface,
     Sphere,
     Surface,
+    SurfaceOfRevolution,
     TangentSurface,
     TripleOrthogonalSystem,
 )
@@ -61,6 +66,7 @@ from .surfaces.parametric import (
     ParametricSurface,
     Torus,
 )
+from .surfaces.profiles import Profile, named_profile, profile_from_points
 
 __version__ = "0.1.0"
 
@@ -124,3 +130,6 @@ __all__ += [
 ]
 __all__ += ["load_scene_file", "SceneFileError"]
 __all__ += ["Label", "Point", "PlacedLabel", "Group"]
+__all__ += ["SurfaceOfRevolution", "Pseudosphere"]
+__all__ += ["Profile", "named_profile", "profile_from_points"]
+__all__ += ["LevelLines", "ParabolicLines", "SelfIntersection"]

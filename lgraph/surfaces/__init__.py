@@ -13,6 +13,7 @@ from .quadric_patches import (
     ParabolicCylinder,
 )
 from .quadrics import Ellipsoid, Quadric, Sphere
+from .revolution import Pseudosphere, SurfaceOfRevolution
 from .ruled import GeneralCone, GeneralCylinder, RuledSurface, TangentSurface
 
 __all__ = ["CONTOUR", "OFF", "ON", "Domain", "Surface", "Quadric", "Ellipsoid", "Sphere"]
@@ -29,3 +30,4 @@ __all__ += [
     "TripleOrthogonalSystem",
 ]
 __all__ += ["RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"]
+__all__ += ["SurfaceOfRevolution", "Pseudosphere"]

@@ -44,7 +44,8 @@ if TYPE_CHECKING:
     from ..projectors import Projector
     from ._base import Surface
 
-__all__ = ["contour", "hits", "view_cosine", "project_to_contour"]
+__all__ = ["contour", "hits", "view_cosine", "project_to_contour", "zero_set", "zero_set_batch"]
+__all__ += ["project_to_zero"]
 
 #: grid nodes per parameter for the contour scan
 CONTOUR_GRID = 193
@@ -87,6 +88,19 @@ def project_to_contour(
     surface: Surface, projector: Projector, uv: np.ndarray, steps: int = 4
 ) -> np.ndarray:
     """Newton projection of parameters ``uv (n, 2)`` onto the contour ``f = 0``."""
+
+    def fun(u1: Any, u2: Any) -> np.ndarray:
+        return view_cosine(surface, projector, u1, u2)
+
+    return project_to_zero(surface, fun, uv, steps, 1e-14)
+
+
+def project_to_zero(
+    surface: Surface, fun: Any, uv: np.ndarray, steps: int = 4, ftol: float = 1e-14
+) -> np.ndarray:
+    """Newton projection of parameters ``uv (n, 2)`` onto ``fun(u1, u2) = 0``
+    (minimal steps in parameters scaled by the spans, central-difference
+    gradients); points with ``|fun| <= ftol`` stop early."""
     d = surface.domain
     scale = np.array([d.span(0), d.span(1)])
     uv = np.array(uv, dtype=float, copy=True)
@@ -96,15 +110,9 @@ def project_to_contour(
         if not len(active):
             break
         p = uv[active]
-        f = view_cosine(surface, projector, p[:, 0], p[:, 1])
-        g1 = (
-            view_cosine(surface, projector, p[:, 0] + h[0], p[:, 1])
-            - view_cosine(surface, projector, p[:, 0] - h[0], p[:, 1])
-        ) / (2 * h[0])
-        g2 = (
-            view_cosine(surface, projector, p[:, 0], p[:, 1] + h[1])
-            - view_cosine(surface, projector, p[:, 0], p[:, 1] - h[1])
-        ) / (2 * h[1])
+        f = fun(p[:, 0], p[:, 1])
+        g1 = (fun(p[:, 0] + h[0], p[:, 1]) - fun(p[:, 0] - h[0], p[:, 1])) / (2 * h[0])
+        g2 = (fun(p[:, 0], p[:, 1] + h[1]) - fun(p[:, 0], p[:, 1] - h[1])) / (2 * h[1])
         # minimal step in coordinates scaled by the spans
         g1s, g2s = g1 * scale[0], g2 * scale[1]
         gg = g1s * g1s + g2s * g2s
@@ -113,7 +121,7 @@ def project_to_contour(
             step = np.where(ok, f / gg, 0.0)
         uv[active, 0] -= step * g1s * scale[0]
         uv[active, 1] -= step * g2s * scale[1]
-        active = active[ok & (np.abs(f) > 1e-14)]
+        active = active[ok & (np.abs(f) > ftol)]
     return uv
 
 
@@ -157,11 +165,23 @@ def _edge_roots(fun: Any, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.n
 def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) -> list[CurveBatch]:
     """Numeric contour of ``surface`` for ``projector`` (local frame), as one batch."""
 
+    def fun(u1: Any, u2: Any) -> np.ndarray:
+        return view_cosine(surface, projector, u1, u2)
+
+    curves = zero_set(surface, fun, grid)
+    return [_contour_batch(surface, projector, curves)] if curves else []
+
+
+def zero_set(surface: Surface, fun: Any, grid: int = CONTOUR_GRID) -> list[tuple[np.ndarray, bool]]:
+    """The curves ``fun(u1, u2) = 0`` on the surface's domain as ``(points, closed)``:
+    marching squares on a ``grid x grid`` parameter grid (periodic parameters
+    wrap), each crossing refined on its grid edge to machine precision, the
+    crossings joined into polylines in the parameter plane."""
     d = surface.domain
     n1, n2 = grid, grid
     a1, a2 = _grid_axis(surface, 0, n1), _grid_axis(surface, 1, n2)
     U1, U2 = np.meshgrid(a1, a2, indexing="ij")
-    F = view_cosine(surface, projector, U1, U2)
+    F = fun(U1, U2)
     F = np.where(np.isfinite(F), F, 0.0)
     pos = F >= 0
     per1, per2 = d.periodic
@@ -203,7 +223,7 @@ def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) ->
         i41, j41 = ci1[four], cj1[four]
         uc1 = 0.5 * (a1[i4] + np.where(i41 == 0, a1[i4] + (a1[1] - a1[0]), a1[i41]))
         uc2 = 0.5 * (a2[j4] + np.where(j41 == 0, a2[j4] + (a2[1] - a2[0]), a2[j41]))
-        fc = view_cosine(surface, projector, uc1, uc2) >= 0
+        fc = fun(uc1, uc2) >= 0
         same = fc == pos[i4, j4]  # centre like the bottom-left corner
         Ef = E[four]
         # same: cut off BR (bottom,right) and TL (top,left); else BL (bottom,left), TR (top,right)
@@ -227,10 +247,10 @@ def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) ->
     if per2:
         pb[:, 1] = np.where(~is_h & (j1 == 0), a2[j0] + (a2[1] - a2[0]), pb[:, 1])
 
-    def fun(p: np.ndarray) -> np.ndarray:
-        return view_cosine(surface, projector, p[:, 0], p[:, 1])
+    def fun_p(p: np.ndarray) -> np.ndarray:
+        return fun(p[:, 0], p[:, 1])
 
-    pts = _edge_roots(fun, pa, pb, F[i0, j0], F[i1, j1])
+    pts = _edge_roots(fun_p, pa, pb, F[i0, j0], F[i1, j1])
     m = len(ids)
     A = coo_matrix((np.ones(len(sa)), (index[sa], index[sb])), shape=(m, m)).tocsr()
     A = A + A.T
@@ -245,7 +265,7 @@ def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) ->
         start = int(ends[0]) if len(ends) else int(members[0])
         order = depth_first_order(A, start, directed=False, return_predecessors=False)
         curves.append((pts[order], len(ends) == 0))
-    return [_contour_batch(surface, projector, curves)] if curves else []
+    return curves
 
 
 def _unwrap(surface: Surface, p: np.ndarray) -> np.ndarray:
@@ -293,18 +313,29 @@ class _ContourCurve:
 
 
 def _contour_batch(surface: Surface, projector: Projector, curves: list) -> CurveBatch:
+    return zero_set_batch(
+        surface, curves, lambda uv: project_to_contour(surface, projector, uv), "contour", CONTOUR
+    )
+
+
+def zero_set_batch(
+    surface: Surface, curves: list, adjust: Any, family: str, own: int = ON
+) -> CurveBatch:
+    """One batch of the :func:`zero_set` curves: splines in the parameter plane
+    (periodic for closed curves) whose points ``adjust(uv)`` projects back onto
+    the zero set at evaluation time."""
     from ..curves import CurveBatch
 
     objs = [_ContourCurve(surface, p, closed) for p, closed in curves]
     return CurveBatch.from_curves(
         surface,
-        "contour",
+        family,
         np.zeros(len(objs)),
         [o.length for o in objs],
         lambda k, t: objs[k](t),
         closed=[o.closed for o in objs],
-        adjust=lambda uv: project_to_contour(surface, projector, uv),
-        own=CONTOUR,
+        adjust=adjust,
+        own=own,
     )
 
 

@@ -1,0 +1,377 @@
+"""Ray test of a surface of revolution, reduced to one root problem in ``t`` per ray.
+
+A line ``o + lam v`` (``|v| = 1``) has height ``h = o_a + c lam`` along the axis
+(``c = v . a``) and squared distance ``r^2 = d^2 + k^2 (lam - s*)^2`` from it
+(``k^2 = 1 - c^2``, ``d`` its distance from the axis, reached at ``lam = s*``,
+height ``h*``).  It meets the parallel ``t`` exactly where
+
+    F(t) = c^2 (rho(t)^2 - d^2) - k^2 (z(t) - h*)^2 = 0,
+
+the meridian section of the hyperboloid of revolution the line sweeps; there
+``lam = s* + (z - h*) / c`` (or, for lines nearly perpendicular to the axis,
+``lam = s* +- sqrt(rho^2 - d^2) / k``, the one consistent with the height).
+
+``F`` and ``F'`` are evaluated on the profile grid for all candidate rays at
+once.  Roots are taken from (1) grid nodes where ``|F|`` is at rounding level,
+(2) sign changes between nodes, refined by Illinois to machine precision, and
+(3) every cell where ``F`` turns back toward zero (``F'`` changes sign the
+right way): its extremum is located (a root of ``F'``) and either splits the
+cell into two sign changes or is itself a double root.  So a grazing ray
+whose two roots fall into one cell is never missed, provided a cell holds at
+most one extremum of ``F`` (the profile grid resolves the profile's turns).
+
+Broad phase: the profile grid is cut into blocks of ``BLOCK`` cells, each
+bounded by a ring (``rho`` and ``z`` ranges padded by a bound on the profile's
+bulge between nodes); a ray is scanned only on the blocks whose rings it
+enters.  Narrow phase: a cell whose ray-parameter range (from its padded
+heights) lies inside ``(eps, lam_max)`` decides a sign change at once; only
+cells straddling those limits are refined (safeguarded Newton on ``F``).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .._own import CONTOUR, ON
+from .._tolerance import SELF_HIT_RTOL
+
+if TYPE_CHECKING:
+    from .revolution import SurfaceOfRevolution
+
+__all__ = ["hits"]
+
+#: |F| below this (times size^2) is a root: rounding level of F, about 100 ulp
+GRAZE_FTOL = 1e-14
+#: rays from contour points: roots this close (times size) are the point's own tangency
+CONTOUR_SELF_RTOL = 1e-6
+#: lines with |v . a| below this take their roots' ray parameter from the radius
+FLAT_C = 1e-3
+#: a root's ray parameter from the radius must agree with its height to this (times size)
+FLAT_RTOL = 1e-7
+#: Newton stops where |F| is below this (times size^2): its rounding level
+NEWTON_FTOL = 1e-16
+#: grid cells per block of the broad phase
+BLOCK = 16
+#: (rays x blocks) per chunk of the broad phase
+CHUNK = 1 << 20
+
+
+def _blocks(surface: SurfaceOfRevolution) -> dict:
+    """Ring bounds of blocks of ``BLOCK`` grid cells (cached on the surface)."""
+    g = surface._grid
+    if "blocks" in g:
+        return g["blocks"]
+    t, rho, z = g["t"], g["rho"], g["z"]
+    m = len(t) - 1
+    # bulge of the profile off each cell's chord: (dt^2 / 8) max |P''|, with |P''|
+    # from second differences of the nodes (doubled for safety)
+    dt = np.diff(t)
+    d2 = np.zeros(m + 1)
+    d2[1:-1] = np.hypot(np.diff(rho, 2), np.diff(z, 2)) / (dt[1:] * dt[:-1])
+    d2[0], d2[-1] = d2[1], d2[-2]
+    cellpad = 0.25 * dt * dt * np.maximum(d2[:-1], d2[1:]) + 1e-9 * g["size"]
+    nb = -(-m // BLOCK)
+    j0 = np.arange(nb) * BLOCK
+    j1 = np.minimum(j0 + BLOCK, m)
+    rlo = np.array([rho[a : b + 1].min() for a, b in zip(j0, j1)])
+    rhi = np.array([rho[a : b + 1].max() for a, b in zip(j0, j1)])
+    zlo = np.array([z[a : b + 1].min() for a, b in zip(j0, j1)])
+    zhi = np.array([z[a : b + 1].max() for a, b in zip(j0, j1)])
+    bpad = np.array([cellpad[a:b].max() for a, b in zip(j0, j1)])
+    out = {
+        "j0": j0, "rlo": np.maximum(rlo - bpad, 0.0), "rhi": rhi + bpad,
+        "zlo": zlo - bpad, "zhi": zhi + bpad, "cellpad": cellpad,
+    }  # fmt: skip
+    g["blocks"] = out
+    return out
+
+
+def hits(
+    surface: SurfaceOfRevolution,
+    origins: np.ndarray,
+    directions: np.ndarray,
+    smax: np.ndarray,
+    own: np.ndarray | None = None,
+) -> np.ndarray:
+    o = np.asarray(origins, dtype=float).reshape(-1, 3)
+    v = np.asarray(directions, dtype=float).reshape(-1, 3)
+    n = len(o)
+    out = np.zeros(n, bool)
+    if not n:
+        return out
+    smax = np.broadcast_to(np.asarray(smax, dtype=float), (n,))
+    own = np.zeros(n, np.int8) if own is None else np.asarray(own)
+    g = surface._grid
+    size = g["size"]
+    speed = np.sqrt(np.einsum("ij,ij->i", v, v))
+    vh = v / speed[:, None]
+    a = g["frame"][2]
+    oa, c = o @ a, vh @ a
+    op = o - oa[:, None] * a
+    vp = vh - c[:, None] * a
+    k2 = np.einsum("ij,ij->i", vp, vp)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sstar = np.where(k2 > 1e-300, -np.einsum("ij,ij->i", op, vp) / k2, 0.0)
+    q = op + sstar[:, None] * vp
+    d2 = np.einsum("ij,ij->i", q, q)
+    hstar = oa + c * sstar
+    lam_max = smax * speed
+    flat = np.abs(c) < FLAT_C
+    rtol = np.where(own == CONTOUR, CONTOUR_SELF_RTOL, SELF_HIT_RTOL)
+    rtol = np.where((own == ON) & flat, FLAT_RTOL, rtol)
+    eps = rtol * size
+    blk = _blocks(surface)
+    nb = len(blk["j0"])
+    step = max(1, CHUNK // nb)
+    pairs_r, pairs_b = [], []
+    for start in range(0, n, step):
+        sl = slice(start, start + step)
+        r, b = _broad(blk, oa[sl], c[sl], k2[sl], d2[sl], sstar[sl], eps[sl], lam_max[sl])
+        pairs_r.append(r + start)
+        pairs_b.append(b)
+    pr, pb = np.concatenate(pairs_r), np.concatenate(pairs_b)
+    if not len(pr):
+        return out
+    ray = (c, k2, d2, hstar, sstar, eps, lam_max)
+    _narrow(surface, blk, pr, pb, ray, out)
+    return out
+
+
+def _broad(blk: dict, oa, c, k2, d2, ss, eps, lam_max) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
+    """(ray, block) pairs whose ring the ray segment ``eps < lam < lam_max`` enters."""
+    C = c[:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        l1 = (blk["zlo"] - oa[:, None]) / C
+        l2 = (blk["zhi"] - oa[:, None]) / C
+    zero = C == 0
+    inslab = (oa[:, None] >= blk["zlo"]) & (oa[:, None] <= blk["zhi"])
+    lo = np.where(zero, np.where(inslab, -np.inf, np.inf), np.minimum(l1, l2))
+    hi = np.where(zero, np.where(inslab, np.inf, -np.inf), np.maximum(l1, l2))
+    lo = np.maximum(lo, eps[:, None])
+    hi = np.minimum(hi, lam_max[:, None])
+    S, K2, D2 = ss[:, None], k2[:, None], d2[:, None]
+    near = np.clip(S, lo, hi)
+    with np.errstate(invalid="ignore"):
+        rmin2 = D2 + K2 * (near - S) ** 2
+        far = np.maximum(np.abs(lo - S), np.abs(hi - S))
+        rmax2 = D2 + K2 * far * far
+    ok = (hi >= lo) & (rmin2 <= blk["rhi"] ** 2) & (rmax2 >= blk["rlo"] ** 2)
+    return np.nonzero(ok)
+
+
+def _newton(f_df, a, b, fa, fb, xtol, ftol):  # noqa: ANN001, ANN202
+    """Roots in brackets ``[a, b]`` (``fa``, ``fb`` of opposite signs): Newton steps
+    from the middle, bisection when a step leaves the bracket; all at once.
+    Stops at ``|f| <= ftol`` (rounding level) or a step below ``xtol``."""
+    a, b, fa = a.copy(), b.copy(), fa.copy()
+    x = 0.5 * (a + b)
+    idx = np.arange(len(a))
+    for _ in range(80):
+        xi = x[idx]
+        f, df = f_df(xi, idx)
+        left = (f > 0) == (fa[idx] > 0)  # root in [x, b]
+        ai = np.where(left, xi, a[idx])
+        bi = np.where(left, b[idx], xi)
+        a[idx], b[idx] = ai, bi
+        fa[idx] = np.where(left, f, fa[idx])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            nx = xi - f / df
+        newton = (nx >= ai) & (nx <= bi)
+        nx = np.where(newton, nx, 0.5 * (ai + bi))
+        x[idx] = nx
+        converged = newton & (np.abs(nx - xi) <= xtol)
+        keep = (np.abs(f) > ftol) & ~converged & (bi - ai > xtol)
+        idx = idx[keep]
+        if not len(idx):
+            break
+    return x
+
+
+def _trimmed(surface: SurfaceOfRevolution, ray, pr, p, a, b, za, zb, dza, span):  # noqa: ANN001, ANN202
+    """Cells ``[a, b]`` (pairs ``p``, ``z`` monotone) cut to ``eps < lam < lam_max``,
+    ``lam = (z - o_a) / c``: the cell tuple of :func:`_narrow` (all inside the range)."""
+    c, k2, d2, hs, ss, eps, lam_max = ray
+    r = pr[p]
+    oa = hs[r] - c[r] * ss[r]
+    lam_a, lam_b = (za - oa) / c[r], (zb - oa) / c[r]
+    lo_t, hi_t = a.copy(), b.copy()
+    keep = np.ones(len(a), bool)
+    for limit, above in ((eps[r], True), (lam_max[r], False)):
+        fin = np.isfinite(limit)
+        za_ = np.where(fin, oa + c[r] * np.where(fin, limit, 0.0), 0.0)
+        ina = (lam_a > limit) == above
+        inb = (lam_b > limit) == above
+        keep &= ina | inb
+        cut = fin & (ina != inb) & keep
+        if cut.any():
+            k = np.flatnonzero(cut)
+            zt = za_[k]
+
+            def f_df(x: np.ndarray, sel: np.ndarray, zt: np.ndarray = zt, k: np.ndarray = k) -> Any:
+                return surface.rz(x)[1] - zt[sel], surface.drz(x)[1]
+
+            tc = _newton(f_df, lo_t[k], hi_t[k], za[k] - zt, zb[k] - zt, 4e-16 * span, 0.0)
+            # the end outside the range moves to the cut
+            lo_t[k] = np.where(ina[k], lo_t[k], tc)
+            hi_t[k] = np.where(ina[k], tc, hi_t[k])
+    p, lo_t, hi_t = p[keep], lo_t[keep], hi_t[keep]
+    r = pr[p]
+    both = np.concatenate([lo_t, hi_t])
+    rr, zz = surface.rz(both)
+    dr, dzz = surface.drz(both)
+    rp = np.concatenate([r, r])
+    cc, kk, h = (c * c)[rp], k2[rp], zz - hs[rp]
+    f = cc * (rr * rr - d2[rp]) - kk * h * h
+    df = 2 * (cc * rr * dr - kk * h * dzz)
+    n = len(p)
+    return (p, lo_t, hi_t, f[:n], f[n:], df[:n], df[n:], np.ones(n, bool))
+
+
+def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None:  # noqa: ANN001
+    """Scan the (ray, block) pairs on the fine grid; set ``out[ray]`` for hits."""
+    c, k2, d2, hs, ss, eps, lam_max = ray
+    g = surface._grid
+    size = g["size"]
+    ftol = GRAZE_FTOL * size * size
+    t_all = g["t"]
+    m = len(t_all) - 1
+    span = t_all[-1] - t_all[0]
+    # nodes of each pair's block (blocks at the end may be shorter: clamp, and mask)
+    j = blk["j0"][pb][:, None] + np.arange(BLOCK + 1)
+    valid_cell = j[:, 1:] <= m
+    j = np.minimum(j, m)
+    t, rho, z = t_all[j], g["rho"][j], g["z"][j]
+    drho, dz = g["drho"][j], g["dz"][j]
+    C2 = (c * c)[pr][:, None]
+    K2, D2, H = k2[pr][:, None], d2[pr][:, None], hs[pr][:, None]
+    dzh = z - H
+    F = C2 * (rho * rho - D2) - K2 * dzh * dzh
+    dF = 2 * (C2 * rho * drho - K2 * dzh * dz)
+    # each cell's range of the ray parameter (steep rays; flat rays: unknown)
+    cp = blk["cellpad"][np.minimum(j[:, :-1], m - 1)]
+    zc_lo = np.minimum(z[:, :-1], z[:, 1:]) - cp
+    zc_hi = np.maximum(z[:, :-1], z[:, 1:]) + cp
+    cr = c[pr][:, None]
+    steep = np.abs(cr) >= FLAT_C
+    with np.errstate(invalid="ignore", divide="ignore"):
+        l1 = ss[pr][:, None] + (zc_lo - H) / cr
+        l2 = ss[pr][:, None] + (zc_hi - H) / cr
+    llo = np.where(steep, np.minimum(l1, l2), -np.inf)
+    lhi = np.where(steep, np.maximum(l1, l2), np.inf)
+    E, LM = eps[pr][:, None], lam_max[pr][:, None]
+    outside = (lhi <= E) | (llo >= LM) | ~valid_cell
+    inside = (llo > E) & (lhi < LM)
+    pos = F > 0
+    # cells of steep rays straddling lam = eps or lam = lam_max where z is monotone:
+    # cut to the part with eps < lam < lam_max (lam = (z - o_a) / c along a steep
+    # line), so a ray's own root (lam = 0) is never refined
+    dz0, dz1 = dz[:, :-1], dz[:, 1:]
+    trim = steep & ~outside & ~inside & (dz0 * dz1 > 0)
+    outside = outside | trim
+    change = (pos[:, :-1] != pos[:, 1:]) & ~outside
+    # sure hits: a sign change inside the ray's range
+    sure = change & inside
+    out[pr[sure.any(axis=1)]] = True
+    F0, F1, G0, G1 = F[:, :-1], F[:, 1:], dF[:, :-1], dF[:, 1:]
+    # cells to search: (pair, t_a, t_b, F_a, F_b, F'_a, F'_b, whole cell inside the range)
+    ci, cj = np.nonzero(~outside)
+    cells = [(ci, t[ci, cj], t[ci, cj + 1], F0[ci, cj], F1[ci, cj], G0[ci, cj], G1[ci, cj],
+              inside[ci, cj])]  # fmt: skip
+    ti, tj = np.nonzero(trim & ~out[pr][:, None])
+    if len(ti):
+        cells.append(_trimmed(surface, ray, pr, ti, t[ti, tj], t[ti, tj + 1],
+                              z[ti, tj], z[ti, tj + 1], dz0[ti, tj], span))  # fmt: skip
+    ci, ta, tb, fa0, fb0, ga0, gb0, whole = (np.concatenate(x) for x in zip(*cells))
+    live = ~out[pr[ci]]
+    ci, ta, tb, fa0, fb0, ga0, gb0, whole = (
+        x[live] for x in (ci, ta, tb, fa0, fb0, ga0, gb0, whole)
+    )
+    chg = (fa0 > 0) != (fb0 > 0)
+    out[pr[ci[chg & whole]]] = True
+    # a cut end lies within the self-hit distance of the ray's own root, where F is
+    # small without a root of interest: only grid nodes count as touching roots
+    node = np.concatenate(
+        [np.ones(len(cells[0][0]), bool)] + [np.zeros(len(x[0]), bool) for x in cells[1:]]
+    )[live]
+    sa, sb = node & (np.abs(fa0) <= ftol), node & (np.abs(fb0) <= ftol)
+    turn = (
+        ~chg
+        & ~sa
+        & ~sb
+        & (((fa0 > 0) & (ga0 < 0) & (gb0 > 0)) | ((fa0 < 0) & (ga0 > 0) & (gb0 < 0)))
+    )
+    root_p, root_t = [ci[sa], ci[sb]], [ta[sa], tb[sb]]
+    bsel = chg & ~whole
+    br_p, br_a, br_b, br_fa, br_fb = [ci[bsel]], [ta[bsel]], [tb[bsel]], [fa0[bsel]], [fb0[bsel]]
+
+    def f_at(x: np.ndarray, p: np.ndarray) -> np.ndarray:
+        rr, zz = surface.rz(x)
+        h = zz - hs[pr[p]]
+        return (c * c)[pr[p]] * (rr * rr - d2[pr[p]]) - k2[pr[p]] * h * h
+
+    ei = np.flatnonzero(turn)
+    if len(ei):
+        ep = ci[ei]
+
+        def d_dd(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            p = pr[ep[sel]]
+            rr, zz = surface.rz(x)
+            dr, dzz = surface.drz(x)
+            ddr, ddz = surface.ddrz(x)
+            cc, kk, h = (c * c)[p], k2[p], zz - hs[p]
+            return (
+                2 * (cc * rr * dr - kk * h * dzz),
+                2 * (cc * (dr * dr + rr * ddr) - kk * (dzz * dzz + h * ddz)),
+            )
+
+        # F is flat at its extremum: t to 1e-9 gives F there to rounding level
+        te = _newton(d_dd, ta[ei], tb[ei], ga0[ei], gb0[ei], 1e-9 * span, 0.0)
+        fe = f_at(te, ep)
+        flip = (fe > 0) != (fa0[ei] > 0)
+        touch = np.abs(fe) <= ftol
+        root_p.append(ep[touch])
+        root_t.append(te[touch])
+        out[pr[ep[flip & whole[ei]]]] = True
+        fl = flip & ~whole[ei]
+        fi, tf, ff = ep[fl], te[fl], fe[fl]
+        br_p += [fi, fi]
+        br_a += [ta[ei][fl], tf]
+        br_b += [tf, tb[ei][fl]]
+        br_fa += [fa0[ei][fl], ff]
+        br_fb += [ff, fb0[ei][fl]]
+    bp = np.concatenate(br_p)
+    if len(bp):
+        a_, b_ = np.concatenate(br_a), np.concatenate(br_b)
+        fa, fb = np.concatenate(br_fa), np.concatenate(br_fb)
+
+        def f_df(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            p = pr[bp[sel]]
+            rr, zz = surface.rz(x)
+            dr, dzz = surface.drz(x)
+            h = zz - hs[p]
+            cc = (c * c)[p]
+            return cc * (rr * rr - d2[p]) - k2[p] * h * h, 2 * (cc * rr * dr - k2[p] * h * dzz)
+
+        root_p.append(bp)
+        root_t.append(_newton(f_df, a_, b_, fa, fb, 4e-16 * span, NEWTON_FTOL * size * size))
+    rp, tt = np.concatenate(root_p), np.concatenate(root_t)
+    if not len(rp):
+        return
+    rr = pr[rp]
+    rho_r, z_r = surface.rz(tt)
+    h = z_r - hs[rr]
+    cr, k = c[rr], np.sqrt(k2[rr])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        steep = np.abs(cr) >= FLAT_C
+        lam = [np.where(steep, ss[rr] + h / np.where(steep, cr, 1.0), np.nan)]
+        half = np.sqrt(np.maximum(rho_r * rho_r - d2[rr], 0.0)) / np.where(k > 0, k, 1.0)
+        # the parallel must reach the line (rho >= d) and the height must agree
+        reach = np.sqrt(d2[rr]) - rho_r <= FLAT_RTOL * size
+        for sign in (1.0, -1.0):
+            ok = ~steep & reach & (np.abs(cr * sign * half - h) <= FLAT_RTOL * size)
+            lam.append(np.where(ok, ss[rr] + sign * half, np.nan))
+    for lm in lam:
+        good = (lm > eps[rr]) & (lm < lam_max[rr])
+        out[rr[good]] = True
