@@ -220,3 +220,27 @@ def test_lgraph_render_writes_tikz(tmp_path: Path) -> None:
     text = out.read_text()
     assert "\\begin{tikzpicture}" in text
     assert sorted(m.group("name") for m in STYLE.finditer(text)) == ["contour", "u1", "u2"]
+
+
+def test_scene_file_save_options_reach_the_tikz_writer(tmp_path: Path) -> None:
+    """``[save] standalone = true, width = "6cm"`` of a scene file: checked
+    against the options the TikZ writer declares, then passed to it."""
+    if not registered():
+        pytest.skip("lgraph-tikz is not installed: pip install -e plugins/lgraph-tikz")
+    scene = tmp_path / "fig.toml"
+    scene.write_text(
+        '[projector]\nkind = "parallel"\nazimuth = 30\nelevation = 20\n'
+        '[[object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
+        '[save]\nstandalone = true\nwidth = "6cm"\n'
+    )
+    out = tmp_path / "fig.tex"
+    r = subprocess.run([sys.executable, "-m", "lgraph", "render", str(scene), "-o", str(out)],
+                       capture_output=True, text=True, timeout=300)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    text = out.read_text()
+    assert text.count("\\documentclass") == 1 and "\\end{document}" in text
+    assert "6 x 6 cm" in text
+    scene.write_text(scene.read_text() + "standalone_typo = 1\n")
+    r = subprocess.run([sys.executable, "-m", "lgraph", "render", str(scene), "-o", str(out)],
+                       capture_output=True, text=True, timeout=300)  # fmt: skip
+    assert r.returncode == 2 and "standalone_typo" in r.stderr
