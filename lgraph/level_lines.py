@@ -131,7 +131,7 @@ class LevelLines(Family):
         A scalar function instead of the height: of the point
         (``function(xyz (..., 3)) -> (...)``, the default) or, with
         ``argument="uv"``, of the parameters (``function(u1, u2)``); or a name
-        of :data:`NAMED_FUNCTIONS` (``"gaussian_curvature"``, ``"mean_curvature"``).
+        of ``NAMED_FUNCTIONS`` (``"gaussian_curvature"``, ``"mean_curvature"``).
     argument : "point" or "uv"
         What ``function`` takes.
     grid : int

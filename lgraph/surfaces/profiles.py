@@ -2,7 +2,7 @@
 
 A :class:`Profile` is a plane curve given by its distance ``rho >= 0`` from
 the axis and its height ``z``, optionally with analytic first and second
-derivatives.  The named profiles (:data:`PROFILES`: ``"pseudosphere"``,
+derivatives.  The named profiles (``PROFILES``: ``"pseudosphere"``,
 ``"catenoid"``, ``"egg"``, ``"vase"``, ``"circle"``) carry their derivatives
 in closed form; :func:`profile_from_points` interpolates piecewise data (a
 list of ``(rho, z)`` knots) by a cubic spline.  Scene files choose a profile by
@@ -163,7 +163,7 @@ PROFILES: dict[str, Callable[..., Profile]] = {
 
 
 def named_profile(name: str = "", **params: Any) -> Profile:
-    """The named profile ``name`` (a key of :data:`PROFILES`) with ``params``."""
+    """The named profile ``name`` (a key of ``PROFILES``) with ``params``."""
     if name not in PROFILES:
         allowed = ", ".join(repr(k) for k in sorted(PROFILES))
         raise ValueError(f"named_profile: name must be one of {allowed}, got {name!r}")
