@@ -30,7 +30,7 @@ The format::
 
     [save]                       # optional: options of the backend chosen by the output
     title = "Ellipsoid"          # suffix (.pdf: compress, precision, title; .png: dpi,
-                                 # size, supersample; .svg: precision; plugins: their own)
+                                 # size, supersample; .svg: precision, layers; plugins: their own)
 
     [save]                       # physical size of the figure (any format): pt, mm, cm, in
     width = "8.5cm"              # and/or height = "6cm" (both: fit inside, aspect kept)

@@ -79,7 +79,7 @@ def backend_options(suffix: str) -> dict[str, Any]:
     first use); raises ValueError for an unknown suffix.
 
     >>> backend_options(".svg")
-    {'precision': 3}
+    {'precision': 3, 'layers': 'family'}
     >>> sorted(backend_options(".png"))
     ['dpi', 'size', 'supersample']
     """
