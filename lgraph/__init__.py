@@ -13,60 +13,98 @@ True
 
 from __future__ import annotations
 
-from .curvature import principal_curvatures, principal_directions
-from .curves import Curve, CurveBatch, CurveOnSurface
-from .drawing import HIDDEN_STYLE, Drawing, Page, PlacedLabel, Stroke, Style
-from .families import Contour, Family, LinesOfCurvature, ParameterLines, Umbilics
-from .geometry.transforms import Transform, rotate, scale, translate
-from .level_lines import LevelLines
-from .objects import Label, Point
-from .parabolic import ParabolicLines
-from .projectors import CentralProjector, ParallelProjector, Projector
-from .scene import Group, Node, Scene
-from .scenefile import SceneFileError, load_scene_file
-from .self_intersection import SelfIntersection
-from .surface_curves import (
-    Arrow,
-    AsymptoticLines,
-    Geodesic,
-    IntersectionCurve,
-    Parallelogram,
-    geodesic,
-    intersection_curves,
-)
-from .surfaces import (
-    ConfocalQuadric,
-    Domain,
-    Ellipsoid,
-    EllipticCone,
-    EllipticCylinder,
-    EllipticParaboloid,
-    GeneralCone,
-    GeneralCylinder,
-    HyperbolicCylinder,
-    HyperbolicParaboloid,
-    HyperboloidOneSheet,
-    HyperboloidTwoSheets,
-    ParabolicCylinder,
-    Pseudosphere,
-    Quadric,
-    RuledSurface,
-    Sphere,
-    Surface,
-    SurfaceOfRevolution,
-    TangentSurface,
-    TripleOrthogonalSystem,
-)
-from .surfaces.parametric import (
-    Catenoid,
-    DupinCyclide,
-    Enneper,
-    Helicoid,
-    MonkeySaddle,
-    ParametricSurface,
-    Torus,
-)
-from .surfaces.profiles import Profile, named_profile, profile_from_points
+import importlib
+from typing import Any
+
+#: public name -> the module that defines it; imported on first use (PEP 562), so
+#: ``import lgraph`` costs only this table and a script pays for what it uses
+_EXPORTS: dict[str, str] = {
+    "principal_curvatures": ".curvature",
+    "principal_directions": ".curvature",
+    "Curve": ".curves",
+    "CurveBatch": ".curves",
+    "CurveOnSurface": ".curves",
+    "HIDDEN_STYLE": ".drawing",
+    "Drawing": ".drawing",
+    "Page": ".drawing",
+    "PlacedLabel": ".drawing",
+    "Stroke": ".drawing",
+    "Style": ".drawing",
+    "Contour": ".families",
+    "Family": ".families",
+    "LinesOfCurvature": ".families",
+    "ParameterLines": ".families",
+    "Umbilics": ".families",
+    "Transform": ".geometry.transforms",
+    "rotate": ".geometry.transforms",
+    "scale": ".geometry.transforms",
+    "translate": ".geometry.transforms",
+    "LevelLines": ".level_lines",
+    "Label": ".objects",
+    "Point": ".objects",
+    "ParabolicLines": ".parabolic",
+    "CentralProjector": ".projectors",
+    "ParallelProjector": ".projectors",
+    "Projector": ".projectors",
+    "Group": ".scene",
+    "Node": ".scene",
+    "Scene": ".scene",
+    "SceneFileError": ".scenefile",
+    "load_scene_file": ".scenefile",
+    "SelfIntersection": ".self_intersection",
+    "Arrow": ".surface_curves",
+    "AsymptoticLines": ".surface_curves",
+    "Geodesic": ".surface_curves",
+    "IntersectionCurve": ".surface_curves",
+    "Parallelogram": ".surface_curves",
+    "geodesic": ".surface_curves",
+    "intersection_curves": ".surface_curves",
+    "ConfocalQuadric": ".surfaces",
+    "Domain": ".surfaces",
+    "Ellipsoid": ".surfaces",
+    "EllipticCone": ".surfaces",
+    "EllipticCylinder": ".surfaces",
+    "EllipticParaboloid": ".surfaces",
+    "GeneralCone": ".surfaces",
+    "GeneralCylinder": ".surfaces",
+    "HyperbolicCylinder": ".surfaces",
+    "HyperbolicParaboloid": ".surfaces",
+    "HyperboloidOneSheet": ".surfaces",
+    "HyperboloidTwoSheets": ".surfaces",
+    "ParabolicCylinder": ".surfaces",
+    "Pseudosphere": ".surfaces",
+    "Quadric": ".surfaces",
+    "RuledSurface": ".surfaces",
+    "Sphere": ".surfaces",
+    "Surface": ".surfaces",
+    "SurfaceOfRevolution": ".surfaces",
+    "TangentSurface": ".surfaces",
+    "TripleOrthogonalSystem": ".surfaces",
+    "Catenoid": ".surfaces.parametric",
+    "DupinCyclide": ".surfaces.parametric",
+    "Enneper": ".surfaces.parametric",
+    "Helicoid": ".surfaces.parametric",
+    "MonkeySaddle": ".surfaces.parametric",
+    "ParametricSurface": ".surfaces.parametric",
+    "Torus": ".surfaces.parametric",
+    "Profile": ".surfaces.profiles",
+    "named_profile": ".surfaces.profiles",
+    "profile_from_points": ".surfaces.profiles",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'lgraph' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module, __name__), name)
+    globals()[name] = value  # later look-ups skip this function
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))
+
 
 __version__ = "0.1.0"
 

@@ -324,6 +324,8 @@ def get_surface(name: str) -> Any:
 
 # -- families --------------------------------------------------------------------
 def _builtin_families() -> dict[str, Any]:
+    # the modules of lgraph's own families register them when imported
+    from . import level_lines, parabolic, self_intersection, surface_curves  # noqa: F401
     from .families import FAMILIES
 
     return FAMILIES
