@@ -18,13 +18,14 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
+import attrs
 import numpy as np
 
 from . import _tolerance as tol
 from ._flips import locate_flips, seed_crossings
-from ._occlusion import Occlusion
+from ._occlusion import Occlusion, _twins
 from ._sampling import Samples, check_points, refine
 from ._validate import as_number
 from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
@@ -152,6 +153,22 @@ def _self_hidden(s: Samples, vis: Occlusion) -> np.ndarray | None:
     return (q >= 0) & (vis.q_node[np.maximum(q, 0)] == s.owner[s.cid])
 
 
+def _undrawn(nodes: tuple, ni: int) -> Any:
+    """Node ``ni`` less what an earlier node holding the same surface in the
+    same place (a surface added twice) already draws: its contour and
+    boundary, and families equal to that node's.  Coincident copies are drawn
+    once, with the first copy's style."""
+    node = nodes[ni]
+    if node.surface is None:
+        return node
+    first = int(_twins(nodes, ni).min())
+    if first == ni:
+        return node
+    earlier = nodes[first]
+    families = tuple(f for f in node.families if f not in earlier.families)
+    return attrs.evolve(node, families=families, contour=node.contour and not earlier.contour)
+
+
 def render(
     scene: Scene,
     projector: Projector,
@@ -192,7 +209,7 @@ def render(
     batches = [
         (ni, b)
         for ni, node in enumerate(nodes)
-        for b in scene.batches(node, local_projector(projector, node.transform))
+        for b in scene.batches(_undrawn(nodes, ni), local_projector(projector, node.transform))
         if len(b)
     ]
     check_points(tol.INITIAL_SAMPLES * sum(len(b) for _, b in batches))
