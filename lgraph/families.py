@@ -38,10 +38,47 @@ __all__ = [
 
 
 class Family:
-    """Base class of line families."""
+    """Base class of line families.
+
+    Every subclass's ``batches(surface, projector)`` first checks its
+    arguments (a surface, and a projector or None), so a family handed
+    something else says so in its own name:
+
+    >>> ParameterLines(3, 3).batches("a sphere", None)
+    Traceback (most recent call last):
+    ...
+    TypeError: ParameterLines.batches: surface must be a Surface, got str
+    """
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        impl = cls.__dict__.get("batches")
+        if impl is None or getattr(impl, "_checked", False):
+            return
+
+        @functools.wraps(impl)
+        def batches(self: Family, surface: Any, projector: Any) -> list[CurveBatch]:
+            _check_batches_args(type(self).__name__, surface, projector)
+            return impl(self, surface, projector)
+
+        batches._checked = True  # type: ignore[attr-defined]
+        cls.batches = batches  # type: ignore[method-assign]
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
         raise NotImplementedError  # pragma: no cover
+
+
+def _check_batches_args(owner: str, surface: Any, projector: Any) -> None:
+    # duck-typed: importing Surface here would make families and surfaces import each other
+    if not (callable(getattr(surface, "point", None)) and hasattr(surface, "domain")):
+        raise TypeError(
+            f"{owner}.batches: surface must be a Surface, got {type(surface).__name__}"
+        )
+    if projector is not None and not callable(getattr(projector, "project", None)):
+        raise TypeError(
+            f"{owner}.batches: projector must be a Projector or None, "
+            f"got {type(projector).__name__}"
+        )
 
 
 def parameter_line_batches(

@@ -111,3 +111,16 @@ def test_more_calls_name_their_bad_parameter(tmp_path) -> None:
     k1, k2 = lg.principal_curvatures(s, np.float64(0.3), np.array([0.1, 0.2]))
     assert np.allclose(k1, k2)  # a sphere is umbilic everywhere
     assert np.allclose(np.abs(k1), 1.0)
+
+
+@pytest.mark.parametrize(
+    "family",
+    [lg.ParameterLines(3, 3), lg.LinesOfCurvature(3, 3), lg.AsymptoticLines(2, 2),
+     lg.LevelLines(3), lg.ParabolicLines(), lg.Umbilics()],
+    ids=lambda f: type(f).__name__,
+)  # fmt: skip
+def test_families_name_a_non_surface(family) -> None:
+    with pytest.raises(TypeError, match=rf"{type(family).__name__}.batches: surface must be"):
+        family.batches("a sphere", None)
+    with pytest.raises(TypeError, match="projector must be a Projector or None"):
+        family.batches(lg.Sphere(1), (1, 2, 3))
