@@ -90,6 +90,8 @@ _EXPORTS: dict[str, str] = {
     "Profile": ".surfaces.profiles",
     "named_profile": ".surfaces.profiles",
     "profile_from_points": ".surfaces.profiles",
+    "orbit": ".projectors",
+    "animate": ".animation",
 }
 
 
@@ -171,3 +173,4 @@ __all__ += ["Label", "Point", "PlacedLabel", "Group"]
 __all__ += ["SurfaceOfRevolution", "Pseudosphere"]
 __all__ += ["Profile", "named_profile", "profile_from_points"]
 __all__ += ["LevelLines", "ParabolicLines", "SelfIntersection"]
+__all__ += ["orbit", "animate"]

@@ -23,7 +23,7 @@ import threading
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 import attrs
 import numpy as np
@@ -274,7 +274,24 @@ def _page(value: Any) -> Page:
     return Page(float(w), float(h))
 
 
-@attrs.frozen(eq=False)
+def _window(value: Any) -> tuple[float, float, float, float] | None:
+    if value is None:
+        return None
+    try:
+        x0, y0, x1, y1 = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"Drawing: window must be (xmin, ymin, xmax, ymax) or None, got {value!r}"
+        ) from None
+    if not (math.isfinite(x0 + y0 + x1 + y1) and x0 < x1 and y0 < y1):
+        raise ValueError(
+            "Drawing: window must be finite with xmin < xmax and ymin < ymax, "
+            f"got {value!r}"
+        )
+    return (x0, y0, x1, y1)
+
+
+@attrs.frozen(eq=False, repr=False)
 class Drawing:
     """Strokes plus page geometry; ``save`` writes PDF, PNG or SVG by suffix."""
 
@@ -282,6 +299,12 @@ class Drawing:
     page: Page = attrs.field(default=None, converter=_page)
     background: tuple[float, float, float] | None = attrs.field(default=(1.0, 1.0, 1.0))
     labels: tuple[PlacedLabel, ...] = attrs.field(default=(), converter=tuple, kw_only=True)
+    #: ``(xmin, ymin, xmax, ymax)`` in projection coordinates that the page
+    #: shows; None (default): the strokes' :meth:`bounds`.  Animations give
+    #: every frame the same window, so the figure keeps its place and scale.
+    window: tuple[float, float, float, float] | None = attrs.field(
+        default=None, kw_only=True, converter=_window
+    )
     _cache: dict = attrs.field(factory=dict, init=False, repr=False)
 
     # -- geometry ---------------------------------------------------------
@@ -309,7 +332,7 @@ class Drawing:
         return self._cache["layout"]
 
     def _compute_layout(self) -> tuple[float, np.ndarray, float, float]:
-        x0, y0, x1, y1 = self.bounds()
+        x0, y0, x1, y1 = self.bounds() if self.window is None else self.window
         w, h = max(x1 - x0, 1e-300), max(y1 - y0, 1e-300)
         if max(w, h) <= 1e-12 * max(abs(x0), abs(y0), abs(x1), abs(y1), 1.0):
             w = h = 1.0  # a single point (one label): the extent's units
@@ -466,12 +489,13 @@ class Drawing:
     # -- output -----------------------------------------------------------
     def save(
         self,
-        path: str | os.PathLike[str],
+        path: str | os.PathLike[str] | IO[bytes],
         *,
         width: str | float | None = None,
         height: str | float | None = None,
+        format: str | None = None,
         **options: Any,
-    ) -> Path:
+    ) -> Any:
         """Write the drawing to ``path``; the format follows the suffix.
 
         ``width`` / ``height`` (optional) give the figure a physical size
@@ -483,17 +507,32 @@ class Drawing:
         backend plugin registers.  The file is written atomically: on any error
         nothing is left behind.
 
+        ``path`` may also be a binary file object (``io.BytesIO``, an open
+        file); then ``format`` (``"pdf"``, ``"png"``, ``"svg"``, ...) names
+        the format, and the object is returned.  ``format`` given with a path
+        overrides its suffix.
+
         Returns the path written.
         """
         from .backends import get_backend
 
+        drawing = self.sized(width, height)
+        if hasattr(path, "write"):
+            from .display import save_to_fileobj
+
+            return save_to_fileobj(drawing, path, format, **options)  # type: ignore[arg-type]
         if not isinstance(path, (str, os.PathLike)):
             raise TypeError(
-                f"Drawing.save: path must be a file name (str or path), got {type(path).__name__}"
+                "Drawing.save: path must be a file name (str or path) or a binary file "
+                f"object, got {type(path).__name__}"
             )
         path = Path(path)
-        writer = get_backend(path.suffix)
-        drawing = self.sized(width, height)
+        if format is not None:
+            from .display import _format_suffix
+
+            writer = get_backend(_format_suffix(format))
+        else:
+            writer = get_backend(path.suffix)
         parent = path.parent if str(path.parent) else Path(".")
         if not parent.is_dir():
             raise FileNotFoundError(f"Drawing.save: folder {str(parent)!r} does not exist")
@@ -514,6 +553,40 @@ class Drawing:
                 raise type(exc)(exc.errno, exc.strerror, str(path)) from None
             raise
         return path
+
+    # -- notebooks and other programs ---------------------------------------
+    def to_svg(self, **options: Any) -> str:
+        """The SVG document as a string (options as for ``save(".svg")``)."""
+        from .display import to_bytes
+
+        return to_bytes(self, "svg", **options).decode("utf-8")
+
+    def _repr_svg_(self) -> str:
+        """Inline display in Jupyter (IPython calls it; lgraph never imports IPython)."""
+        return self.to_svg()
+
+    def _repr_png_(self) -> bytes:
+        """Inline PNG for front ends that prefer raster images."""
+        from .display import REPR_PNG_DPI, to_bytes
+
+        return to_bytes(self, "png", dpi=REPR_PNG_DPI)
+
+    def plot(self, ax: Any = None, *, axis: bool = False) -> Any:
+        """Draw the strokes into a matplotlib ``Axes`` (needs matplotlib) and return it.
+
+        See :func:`lgraph.display.plot`: line collections with the strokes'
+        colours, widths and dashes in pt, equal aspect, hidden parts below.
+        """
+        from .display import plot
+
+        return plot(self, ax, axis=axis)
+
+    def __repr__(self) -> str:
+        w, h = self.page_size()
+        return (
+            f"<Drawing: {len(self.strokes)} strokes, {self.n_points} points, "
+            f"page {w:.0f} x {h:.0f} pt>"
+        )
 
 
 @contextmanager

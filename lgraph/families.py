@@ -11,7 +11,7 @@ the contour) into :class:`~lgraph.curves.CurveBatch` objects.
 from __future__ import annotations
 
 import functools
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import attrs
 import numpy as np
@@ -48,7 +48,14 @@ class Family:
     Traceback (most recent call last):
     ...
     TypeError: ParameterLines.batches: surface must be a Surface, got str
+
+    ``view_dependent`` says whether the curves change with the projector; a
+    family that sets it False has its curves computed once per surface and
+    reused for every view (:mod:`lgraph.family_cache`).  The default, True,
+    is the safe one for families that do not say.
     """
+
+    view_dependent: ClassVar[bool] = True
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -131,6 +138,8 @@ class ParameterLines(Family):
     ValueError: ParameterLines: n1 must be an integer from 0 to 100000, got -1
     """
 
+    view_dependent: ClassVar[bool] = False
+
     n1: int = attrs.field(default=10, validator=count("ParameterLines"))
     n2: int = attrs.field(default=10, validator=count("ParameterLines"))
 
@@ -169,6 +178,8 @@ class LinesOfCurvature(Family):
     ValueError: LinesOfCurvature: spacing must be one of 'complete', 'even', got 'dense'
     """
 
+    view_dependent: ClassVar[bool] = False
+
     n1: int = attrs.field(default=10, validator=count("LinesOfCurvature"))
     n2: int = attrs.field(default=10, validator=count("LinesOfCurvature"))
     spacing: str = attrs.field(
@@ -195,6 +206,8 @@ class Umbilics(Family):
     Uses ``surface.umbilic_marks(radius)``; ``radius`` defaults to 1.5 % of the
     patch size.  Surfaces without umbilics draw nothing.
     """
+
+    view_dependent: ClassVar[bool] = False
 
     radius: float | None = attrs.field(default=None)
 

@@ -21,7 +21,7 @@ import numpy as np
 from ._validate import as_number, vector3
 from .geometry.vectors import cross3
 
-__all__ = ["Projector", "ParallelProjector", "CentralProjector"]
+__all__ = ["Projector", "ParallelProjector", "CentralProjector", "orbit"]
 
 
 def _frame(toward_viewer: np.ndarray, up: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -208,3 +208,43 @@ class CentralProjector(Projector):
 
     def describe(self) -> str:
         return f"central projection, eye {self.eye.tolist()}, target {self.target.tolist()}"
+
+
+def orbit(
+    elevation: float = 25.0,
+    frames: int = 24,
+    distance: float | None = None,
+    *,
+    azimuth: float = 0.0,
+    turn: float = 360.0,
+    target: Any = (0.0, 0.0, 0.0),
+) -> list[Projector]:
+    """``frames`` views around the z axis: a turntable.
+
+    The eye moves at constant ``elevation`` (degrees) from ``azimuth`` in steps
+    of ``turn / frames`` degrees (the last view stops one step short of a full
+    turn, so a looping animation does not repeat a frame).  With ``distance``
+    None the views are parallel projections; with a distance, central
+    projections from that distance to ``target``.
+
+    >>> views = orbit(elevation=30, frames=4)
+    >>> [v.direction.round(3).tolist() for v in views[:2]]
+    [[0.866, 0.0, 0.5], [0.0, 0.866, 0.5]]
+    >>> type(orbit(frames=2, distance=10)[0]).__name__
+    'CentralProjector'
+    >>> orbit(frames=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: orbit: frames must be an integer from 1 to 100000, got 0
+    """
+    if isinstance(frames, bool) or not isinstance(frames, int) or not 1 <= frames <= 100000:
+        raise ValueError(f"orbit: frames must be an integer from 1 to 100000, got {frames!r}")
+    for name, v in (("azimuth", azimuth), ("turn", turn)):
+        if isinstance(v, bool) or not (isinstance(v, (int, float)) and math.isfinite(v)):
+            raise ValueError(f"orbit: {name} must be a finite number of degrees, got {v!r}")
+    azimuths = azimuth + turn * np.arange(frames) / frames
+    if distance is None:
+        return [ParallelProjector.from_angles(float(a), elevation) for a in azimuths]
+    return [
+        CentralProjector.from_angles(float(a), elevation, distance, target) for a in azimuths
+    ]

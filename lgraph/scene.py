@@ -26,6 +26,7 @@ from ._tolerance import CHORD_TOLERANCE
 from .curves import Curve, CurveOnSurface
 from .drawing import Drawing, Page, Style
 from .families import FAMILIES, Contour, Family
+from .family_cache import family_batches
 from .geometry.transforms import IDENTITY, Transform
 from .surfaces._base import Surface
 
@@ -274,14 +275,28 @@ class Scene:
         """The curve batches a node draws (in its local coordinates)."""
         out = []
         if node.surface is not None:
-            for fam in node.families:
-                out.extend(fam.batches(node.surface, local_projector))
+            for i, fam in enumerate(node.families):  # view-independent ones are cached
+                out.extend(family_batches(node, i, fam, local_projector))
             if node.contour:
                 out.extend(Contour().batches(node.surface, local_projector))
                 out.extend(node.surface.boundary())
         else:
             out.append(node.item.batch())
         return out
+
+    def _repr_svg_(self) -> str:
+        """Inline display: the scene from :data:`lgraph.display.DEFAULT_VIEW`."""
+        from .display import scene_drawing
+
+        return scene_drawing(self)._repr_svg_()
+
+    def _repr_png_(self) -> bytes:
+        from .display import scene_drawing
+
+        return scene_drawing(self)._repr_png_()
+
+    def __repr__(self) -> str:
+        return f"<Scene: {len(self._nodes)} nodes>"
 
     def render(
         self,

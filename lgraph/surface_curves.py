@@ -17,7 +17,7 @@ True
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import attrs
 import numpy as np
@@ -62,6 +62,8 @@ class AsymptoticLines(Family):
     ...
     ValueError: AsymptoticLines: n1 must be an integer from 0 to 100000, got -1
     """
+
+    view_dependent: ClassVar[bool] = False
 
     n1: int = attrs.field(default=8, validator=count("AsymptoticLines"))
     n2: int = attrs.field(default=8, validator=count("AsymptoticLines"))
@@ -178,6 +180,8 @@ class Geodesic(Family):
     ...
     ValueError: Geodesic: length must be a positive finite number, got 0
     """
+
+    view_dependent: ClassVar[bool] = False
 
     uv0: tuple[float, float] = attrs.field(converter=lambda v: _pair("Geodesic", "uv0", v))
     direction: tuple[float, float] = attrs.field(
@@ -389,6 +393,8 @@ class IntersectionCurve(Family):
     ...
     TypeError: IntersectionCurve: other must be a Surface, got str
     """
+
+    view_dependent: ClassVar[bool] = False
 
     other: Any = attrs.field()
     family: str = attrs.field(default="intersection", kw_only=True)

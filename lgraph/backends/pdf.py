@@ -33,7 +33,7 @@ from ._common import (
     page_runs,
 )
 
-__all__ = ["write_pdf"]
+__all__ = ["write_pdf", "new_canvas", "draw_page"]
 
 _WHITE = (1.0, 1.0, 1.0)
 
@@ -132,10 +132,20 @@ def write_pdf(
     precision = check_precision("write_pdf", precision)
     level = _compress_level(compress)
 
+    pw, ph = drawing.page_size()
+    canvas = new_canvas(path, (pw, ph), level, title)
+    draw_page(canvas, drawing, precision)
+    canvas.showPage()
+    canvas.save()
+
+
+def new_canvas(path: Any, pagesize: tuple[float, float], level: int, title: str) -> Any:
+    """A reportlab canvas for ``path`` (or a binary file object) with our stream
+    filter at zlib ``level``."""
     from reportlab.pdfgen.canvas import Canvas
 
-    pw, ph = drawing.page_size()
-    canvas = Canvas(os.fspath(path), pagesize=(pw, ph), pageCompression=0)
+    target = path if hasattr(path, "write") else os.fspath(path)
+    canvas = Canvas(target, pagesize=pagesize, pageCompression=0)
     if level:
         doc = getattr(canvas, "_doc", None)
         if hasattr(doc, "defaultStreamFilters"):
@@ -146,7 +156,12 @@ def write_pdf(
     canvas.setTitle(str(title))
     canvas.setCreator("lgraph")
     canvas.setSubject("line drawing")
+    return canvas
 
+
+def draw_page(canvas: Any, drawing: Any, precision: int) -> None:
+    """Draw ``drawing``'s strokes (and background) onto the canvas's current page."""
+    pw, ph = drawing.page_size()
     bg = background_rgb(drawing)
     if bg is not None and bg != _WHITE:
         rgb = " ".join(fmt_num(c) for c in bg)
@@ -191,5 +206,3 @@ def write_pdf(
         from ._labels import pdf_labels
 
         pdf_labels(drawing, canvas)
-    canvas.showPage()
-    canvas.save()

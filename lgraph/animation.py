@@ -1,0 +1,417 @@
+"""Animations and many frames: :func:`animate` renders a scene from many views.
+
+Frames go straight to a streaming writer (:mod:`lgraph.frame_writers`): an
+animated GIF, APNG or WebP, a multi-page PDF, or a folder of numbered
+PNG/SVG/PDF frames, chosen by the path's suffix.  Every frame shows the same
+window of the projection plane (the union, over all views, of the scene's
+projected extent), so the figure keeps its place and scale.
+
+The geometry that does not depend on the view (lines of curvature,
+geodesics, ...) is computed once per process (:mod:`lgraph.family_cache`);
+only the contour, the sampling and the visibility are redone per frame.
+
+Frames run in this process, in a local process pool (the default for many
+frames), or on any :class:`concurrent.futures.Executor` -- including a Dask
+cluster's ``client.get_executor()``, to which the scene is scattered once
+per worker.
+
+>>> import os, tempfile
+>>> import lgraph as lg
+>>> from PIL import Image
+>>> scene = lg.Scene()
+>>> _ = scene.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(6, 8))
+>>> with tempfile.TemporaryDirectory() as tmp:
+...     path = lg.animate(scene, lg.orbit(elevation=25, frames=4), os.path.join(tmp, "t.gif"),
+...                       width=120, progress=False)
+...     im = Image.open(path)
+...     im.n_frames, im.size[0]
+(4, 120)
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import math
+import os
+import pickle
+import sys
+import time
+import uuid
+import warnings
+from collections import deque
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+from typing import Any, TextIO
+
+import attrs
+import numpy as np
+
+from .drawing import Drawing, Page, Stroke
+from .frame_writers import writer_for
+from .projectors import Projector
+
+__all__ = ["animate", "frame_window", "PARALLEL_MIN_FRAMES", "MAX_WIDTH"]
+
+#: With ``executor=None``, at least this many frames run in a local process pool.
+PARALLEL_MIN_FRAMES = 24
+
+#: Largest frame width in pixels.
+MAX_WIDTH = 8000
+
+#: Grid of parameter values per surface (per side) for the common frame window.
+_WINDOW_GRID = 41
+
+
+# -- the frame window -----------------------------------------------------------
+def _scene_points(scene: Any) -> np.ndarray:
+    """World points spread over every node: a parameter grid on each surface's
+    drawn patch, samples along each free curve."""
+    pts = []
+    for node in scene.nodes:
+        if node.surface is not None:
+            d = node.surface.domain
+            u1 = np.linspace(*d.u1, _WINDOW_GRID)
+            u2 = np.linspace(*d.u2, _WINDOW_GRID)
+            g1, g2 = np.meshgrid(u1, u2)
+            p = np.asarray(node.surface.point(g1.ravel(), g2.ravel()), float).reshape(-1, 3)
+        else:
+            b = node.item.batch()
+            n = _WINDOW_GRID * 4
+            idx = np.repeat(np.arange(len(b)), n)
+            s = np.tile(np.linspace(0.0, 1.0, n), len(b))
+            t = b.t0[idx] + s * (b.t1[idx] - b.t0[idx])
+            p = np.asarray(b.evaluate(idx, t)[0], float).reshape(-1, 3)
+        pts.append(node.transform.apply(p))
+    if not pts:
+        return np.zeros((1, 3))
+    allp = np.concatenate(pts)
+    return allp[np.isfinite(allp).all(axis=1)]
+
+
+def frame_window(
+    scene: Any, views: Sequence[Projector], pad: float = 0.04
+) -> tuple[float, float, float, float]:
+    """The projection-plane window ``(xmin, ymin, xmax, ymax)`` that holds the
+    scene in every view, padded by ``pad`` times its larger side.
+
+    >>> import lgraph as lg
+    >>> scene = lg.Scene()
+    >>> _ = scene.add(lg.Sphere(1))
+    >>> [round(v, 2) for v in frame_window(scene, lg.orbit(frames=8), pad=0)]
+    [-1.0, -1.0, 1.0, 1.0]
+    """
+    pts = _scene_points(scene)
+    lo = np.full(2, np.inf)
+    hi = np.full(2, -np.inf)
+    for view in views:
+        xy = view.project(pts)
+        xy = xy[np.isfinite(xy).all(axis=1)]
+        if len(xy):
+            lo = np.minimum(lo, xy.min(axis=0))
+            hi = np.maximum(hi, xy.max(axis=0))
+    if not np.isfinite(lo).all():
+        lo, hi = np.zeros(2), np.ones(2)
+    size = max(float((hi - lo).max()), 1e-12)
+    lo, hi = lo - pad * size, hi + pad * size
+    return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+
+# -- one frame --------------------------------------------------------------------
+@attrs.frozen(eq=False)
+class _Job:
+    """Everything a worker needs to render any frame (sent once per worker)."""
+
+    scene: Any
+    window: tuple[float, float, float, float]
+    page: Page
+    size: tuple[int, int]
+    kind: str  # "png", "svg", "pdf" (the frame file's bytes) or "drawing"
+    render_options: dict
+
+    def render(self, view: Projector) -> Any:
+        d = self.scene.render(view, **self.render_options)
+        d = Drawing(strokes=d.strokes, page=self.page, background=d.background, window=self.window)
+        if self.kind == "drawing":  # only what a page needs: no xyz, uv, surface
+            slim = tuple(
+                Stroke(s.xy, np.empty((0, 3)), visible=s.visible, family=s.family, style=s.style)
+                for s in d.strokes
+            )
+            return attrs.evolve(d, strokes=slim)
+        from .display import to_bytes
+
+        if self.kind == "png":
+            return to_bytes(d, "png", size=self.size)
+        return to_bytes(d, self.kind)
+
+
+# Worker side: the job installed by the pool initializer, or remembered by token.
+_INSTALLED: dict[str, Any] = {}
+#: How many times this process has unpickled a job (tests check "once per worker").
+JOB_LOADS = [0]
+
+
+def _load(data: bytes) -> _Job:
+    JOB_LOADS[0] += 1
+    return pickle.loads(data)
+
+
+def _install(data: bytes) -> None:
+    _INSTALLED["job"] = _load(data)
+
+
+def _render_installed(view: Projector) -> Any:
+    return _INSTALLED["job"].render(view)
+
+
+def _render_chunk(token: str, data: bytes, views: list[Projector]) -> list[Any]:
+    job = _INSTALLED.get(token)
+    if job is None:
+        _INSTALLED.clear()  # one scene at a time per worker
+        job = _INSTALLED[token] = _load(data)
+    return [job.render(v) for v in views]
+
+
+def _render_scattered(job: _Job, view: Projector) -> Any:
+    return job.render(view)
+
+
+def _dumps(job: _Job) -> bytes:
+    """Pickle the job (with cloudpickle when installed: scenes may hold lambdas)."""
+    try:
+        import cloudpickle
+    except ImportError:
+        return pickle.dumps(job, protocol=pickle.HIGHEST_PROTOCOL)
+    return cloudpickle.dumps(job, protocol=pickle.HIGHEST_PROTOCOL)
+
+
+# -- progress --------------------------------------------------------------------------
+class _Progress:
+    """A one-line progress bar on a terminal; silent otherwise."""
+
+    def __init__(self, total: int, enabled: bool, stream: TextIO | None = None) -> None:
+        self.stream = stream if stream is not None else sys.stderr
+        isatty = getattr(self.stream, "isatty", None)
+        self.on = bool(enabled) and callable(isatty) and bool(isatty())
+        self.total, self.done, self.t0 = total, 0, time.perf_counter()
+
+    def update(self) -> None:
+        self.done += 1
+        if not self.on:
+            return
+        took = time.perf_counter() - self.t0
+        left = took / self.done * (self.total - self.done)
+        n = round(30 * self.done / self.total)
+        self.stream.write(
+            f"\ranimate [{'#' * n}{'.' * (30 - n)}] {self.done}/{self.total} frames, "
+            f"{took:.1f} s, {left:.1f} s left "
+        )
+        self.stream.flush()
+
+    def close(self) -> None:
+        if self.on:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+# -- scheduling ----------------------------------------------------------------------
+def _is_dask(executor: Any) -> bool:
+    return type(executor).__module__.startswith("distributed") and hasattr(executor, "_client")
+
+
+def _max_workers(executor: Any) -> int:
+    n = getattr(executor, "_max_workers", None)
+    if _is_dask(executor):
+        try:
+            n = sum(executor._client.nthreads().values())
+        except Exception:  # noqa: BLE001 - a cluster that cannot say: assume a few
+            n = 4
+    return max(1, int(n or os.cpu_count() or 1))
+
+
+def _ordered(submit: Any, items: Sequence[Any], window: int) -> Iterator[Any]:
+    """Submit ``items`` keeping at most ``window`` pending; yield results in order."""
+    pending: deque = deque()
+    it = iter(items)
+    try:
+        for item in it:
+            pending.append(submit(item))
+            if len(pending) >= window:
+                yield pending.popleft().result()
+        while pending:
+            yield pending.popleft().result()
+    finally:
+        for fut in pending:
+            fut.cancel()
+
+
+def _frames(
+    job: _Job, views: list[Projector], executor: Any, workers: int | None
+) -> tuple[Iterator[Any], Any]:
+    """The rendered frames in order, and the pool to shut down (or None)."""
+    n = len(views)
+    if executor is None:
+        if workers is None:
+            workers = min(os.cpu_count() or 1, 8) if n >= PARALLEL_MIN_FRAMES else 1
+        workers = max(1, min(int(workers), n))
+        if workers > 1:
+            try:
+                data = _dumps(job)
+            except Exception as e:  # noqa: BLE001 - e.g. a lambda without cloudpickle
+                warnings.warn(
+                    f"animate: the scene cannot be sent to worker processes ({e}); rendering "
+                    "the frames in this process (pip install cloudpickle to send lambdas)",
+                    RuntimeWarning,
+                    stacklevel=3,
+                )
+            else:
+                pool = cf.ProcessPoolExecutor(workers, initializer=_install, initargs=(data,))
+                frames = _ordered(lambda v: pool.submit(_render_installed, v), views, 2 * workers)
+                return frames, pool
+        return (job.render(v) for v in views), None
+    if not isinstance(executor, cf.Executor):
+        raise TypeError(
+            "animate: executor must be a concurrent.futures.Executor (a process or thread "
+            f"pool, a Dask client's get_executor()) or None, got {type(executor).__name__}"
+        )
+    k = _max_workers(executor)
+    if isinstance(executor, cf.ThreadPoolExecutor):  # shares this process's scene
+        return _ordered(lambda v: executor.submit(job.render, v), views, 2 * k), None
+    if _is_dask(executor):  # the job goes to every worker once
+        scattered = executor._client.scatter(job, broadcast=True, hash=False)
+        return _ordered(
+            lambda v: executor.submit(_render_scattered, scattered, v), views, 2 * k
+        ), None
+    # any other executor: chunks of frames, each with the pickled job; a worker
+    # unpickles a job once and keeps it for the following chunks
+    data, token = _dumps(job), uuid.uuid4().hex
+    chunk = max(1, min(16, math.ceil(n / (4 * k))))
+    chunks = [views[i : i + chunk] for i in range(0, n, chunk)]
+    results = _ordered(lambda c: executor.submit(_render_chunk, token, data, c), chunks, 2 * k)
+    return (frame for part in results for frame in part), None
+
+
+# -- the public function --------------------------------------------------------------
+def _check_views(views: Any) -> list[Projector]:
+    try:
+        views = list(views)
+    except TypeError:
+        raise TypeError(
+            f"animate: views must be a sequence of projectors (lg.orbit(...)), got "
+            f"{type(views).__name__}"
+        ) from None
+    if not views:
+        raise ValueError("animate: views is empty; give at least one projector")
+    for k, v in enumerate(views):
+        if not isinstance(v, Projector):
+            raise TypeError(f"animate: views[{k}] must be a Projector, got {type(v).__name__}")
+    return views
+
+
+def animate(
+    scene: Any,
+    views: Sequence[Projector],
+    path: str | os.PathLike[str],
+    *,
+    fps: float = 12,
+    hidden_lines: bool = False,
+    width: int = 480,
+    executor: cf.Executor | None = None,
+    workers: int | None = None,
+    progress: bool = True,
+    frame_format: str = "png",
+    loop: int = 0,
+    render_options: dict[str, Any] | None = None,
+) -> Path:
+    """Render ``scene`` from every projector in ``views`` into an animation at ``path``.
+
+    Parameters
+    ----------
+    scene : Scene
+        What to draw.
+    views : sequence of Projector
+        One projector per frame, e.g. ``lg.orbit(elevation=25, frames=72)``.
+    path : path-like
+        ``.gif`` (animated GIF), ``.png`` or ``.apng`` (animated PNG), ``.webp``
+        (animated WebP, lossless), ``.pdf`` (one frame a page, for beamer
+        slides), or a folder name without suffix: numbered frames
+        ``frame_0000.<frame_format>``.  Files are written atomically.
+    fps : float
+        Frames per second (GIF delays are whole hundredths of a second).
+    hidden_lines : bool
+        Draw hidden parts dashed.
+    width : int
+        Frame width in pixels for raster output (and in pt for PDF and SVG);
+        the height follows from the scene's shape.
+    executor : concurrent.futures.Executor, optional
+        Where frames are rendered: any executor, e.g. a
+        :class:`~concurrent.futures.ProcessPoolExecutor` or a Dask
+        ``client.get_executor()`` (the scene is scattered to each worker once).
+        None: in this process, or in a local process pool of ``workers``
+        processes (default: the CPU count when there are at least
+        :data:`PARALLEL_MIN_FRAMES` frames).
+    workers : int, optional
+        Size of the local pool when ``executor`` is None (1: this process).
+    progress : bool
+        Show a progress bar when standard error is a terminal.
+    frame_format : {"png", "svg", "pdf"}
+        Format of the frames written into a folder.
+    loop : int
+        Times a GIF/APNG/WebP repeats; 0 for ever.
+    render_options : dict, optional
+        More keywords for :meth:`Scene.render` (``tolerance``, ``hidden_style``).
+
+    Returns
+    -------
+    Path
+        The file or folder written.
+    """
+    from .scene import Scene
+
+    if not isinstance(scene, Scene):
+        raise TypeError(f"animate: scene must be a Scene, got {type(scene).__name__}")
+    views = _check_views(views)
+    if isinstance(fps, bool) or not (isinstance(fps, (int, float)) and 0 < fps <= 100):
+        raise ValueError(f"animate: fps must be a number in (0, 100], got {fps!r}")
+    if isinstance(width, bool) or not isinstance(width, int) or not 16 <= width <= MAX_WIDTH:
+        raise ValueError(
+            f"animate: width must be an integer from 16 to {MAX_WIDTH} px, got {width!r}"
+        )
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
+    ):
+        raise ValueError(f"animate: workers must be a positive integer or None, got {workers!r}")
+    if isinstance(loop, bool) or not isinstance(loop, int) or not 0 <= loop <= 65535:
+        raise ValueError(f"animate: loop must be an integer from 0 to 65535, got {loop!r}")
+    options = dict(render_options or {})
+    options["hidden_lines"] = bool(hidden_lines)
+
+    window = frame_window(scene, views)
+    margin = 0.03 * width
+    aspect = (window[3] - window[1]) / (window[2] - window[0])
+    height = max(16, round((width - 2 * margin) * aspect + 2 * margin))
+    page = Page(width=float(width), height=float(height), margin=margin)
+    writer = writer_for(path, len(views), fps, frame_format, loop)
+    kind = writer.kind
+    if kind == "bytes":
+        kind = writer.fmt
+    job = _Job(scene, window, page, (width, height), kind, options)
+
+    bar = _Progress(len(views), progress)
+    pool = None
+    try:
+        frames, pool = _frames(job, views, executor, workers)
+        for frame in frames:
+            writer.add(frame)
+            bar.update()
+        result = writer.close()
+    except BaseException:
+        writer.abort()
+        if pool is not None:
+            pool.shutdown(wait=False, cancel_futures=True)
+            pool = None
+        raise
+    finally:
+        bar.close()
+        if pool is not None:
+            pool.shutdown()
+    return Path(result)

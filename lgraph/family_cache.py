@@ -1,0 +1,156 @@
+"""Cache of view-independent geometry: what a line family returns for a node.
+
+Lines of curvature (closed-form or integrated), asymptotic lines, geodesics,
+intersection curves, umbilic marks and parameter lines do not depend on the
+view.  :meth:`lgraph.Scene.batches` asks this module for them, so a scene
+rendered again with another projector (a turntable, an interactive view)
+computes them once; only the contour, the sampling and the visibility are
+redone per view.
+
+Safety
+------
+* The key is the :class:`~lgraph.Node` object itself (held weakly: a node
+  that is garbage-collected drops its entries), the family's position in the
+  node and the family object.  Nodes, surfaces and families are immutable, so
+  an entry can never go stale: a changed scene consists of new nodes (or has
+  new ones added), which miss the cache and are computed afresh.
+* Families that depend on the view (the contour; any family whose class sets
+  ``view_dependent = True``, the default for families outside lgraph) are
+  never cached.
+* The cache lives in the process: it is not pickled with a scene, and each
+  worker process of a parallel animation fills its own.
+
+Memory
+------
+At most :data:`MAX_ENTRIES` family results are kept, least recently used
+evicted first.  One entry holds the curves of one family on one node: for
+closed forms a few closures, for numeric lines of curvature the integrator's
+dense output (typically well under 10 MB for a figure's 30 lines), so the
+cache stays bounded by ``MAX_ENTRIES`` times that.  :func:`clear` empties it;
+:func:`set_max_entries` changes the bound (0 turns caching off).
+
+>>> import lgraph as lg
+>>> is_view_dependent(lg.LinesOfCurvature(4, 4)), is_view_dependent(lg.Contour())
+(False, True)
+"""
+
+from __future__ import annotations
+
+import threading
+import weakref
+from collections import OrderedDict
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .curves import CurveBatch
+    from .families import Family
+    from .projectors import Projector
+    from .scene import Node
+
+__all__ = [
+    "family_batches",
+    "is_view_dependent",
+    "clear",
+    "info",
+    "set_max_entries",
+    "MAX_ENTRIES",
+]
+
+#: Default bound on the number of cached family results (see the module docs).
+MAX_ENTRIES = 256
+
+_lock = threading.RLock()
+_max_entries = MAX_ENTRIES
+# LRU order over (weakref to node, index, family key) -> list of batches
+_entries: OrderedDict[tuple[Any, int, Any], list] = OrderedDict()
+_stats = {"hits": 0, "misses": 0}
+
+
+def _family_key(family: Family) -> Any:
+    try:
+        hash(family)
+    except TypeError:  # an unhashable family: identity is still safe
+        return ("id", id(family), family)
+    return family
+
+
+def _forget(ref: weakref.ref) -> None:
+    """Called when a node is garbage-collected: drop its entries."""
+    with _lock:
+        for key in [k for k in _entries if k[0] is ref]:
+            del _entries[key]
+
+
+_refs: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _node_ref(node: Node) -> weakref.ref:
+    ref = _refs.get(node)
+    if ref is None:
+        ref = weakref.ref(node, _forget)
+        _refs[node] = ref
+    return ref
+
+
+def is_view_dependent(family: Family) -> bool:
+    """Whether ``family``'s curves change with the projector (then never cached)."""
+    return bool(getattr(family, "view_dependent", True))
+
+
+def family_batches(
+    node: Node, index: int, family: Family, projector: Projector | None
+) -> list[CurveBatch]:
+    """``family.batches(node.surface, projector)``, computed once per node and
+    family when the family does not depend on the view.
+
+    ``projector`` is the node's local projector; view-dependent families get
+    it on every call.  The returned list must not be modified.
+    """
+    if _max_entries <= 0 or is_view_dependent(family):
+        return family.batches(node.surface, projector)
+    with _lock:
+        key = (_node_ref(node), index, _family_key(family))
+        found = _entries.get(key)
+        if found is not None:
+            _entries.move_to_end(key)
+            _stats["hits"] += 1
+            return found
+        _stats["misses"] += 1
+    # computed outside the lock: other threads may render other scenes meanwhile
+    result = list(family.batches(node.surface, projector))
+    with _lock:
+        _entries[key] = result
+        _entries.move_to_end(key)
+        while len(_entries) > _max_entries:
+            _entries.popitem(last=False)
+    return result
+
+
+def clear() -> None:
+    """Empty the cache and reset its counters."""
+    with _lock:
+        _entries.clear()
+        _stats["hits"] = _stats["misses"] = 0
+
+
+def info() -> dict[str, int]:
+    """``{"entries", "max_entries", "hits", "misses"}`` of this process's cache."""
+    with _lock:
+        return {"entries": len(_entries), "max_entries": _max_entries, **_stats}
+
+
+def set_max_entries(n: int) -> None:
+    """Bound the cache to ``n`` family results (0 disables caching).
+
+    >>> set_max_entries(-1)
+    Traceback (most recent call last):
+    ...
+    ValueError: set_max_entries: n must be a non-negative integer, got -1
+    """
+    global _max_entries
+    if isinstance(n, bool) or not isinstance(n, int) or n < 0:
+        raise ValueError(f"set_max_entries: n must be a non-negative integer, got {n!r}")
+    with _lock:
+        _max_entries = n
+        while len(_entries) > n:
+            _entries.popitem(last=False)
