@@ -285,8 +285,7 @@ def _window(value: Any) -> tuple[float, float, float, float] | None:
         ) from None
     if not (math.isfinite(x0 + y0 + x1 + y1) and x0 < x1 and y0 < y1):
         raise ValueError(
-            "Drawing: window must be finite with xmin < xmax and ymin < ymax, "
-            f"got {value!r}"
+            f"Drawing: window must be finite with xmin < xmax and ymin < ymax, got {value!r}"
         )
     return (x0, y0, x1, y1)
 

@@ -245,6 +245,4 @@ def orbit(
     azimuths = azimuth + turn * np.arange(frames) / frames
     if distance is None:
         return [ParallelProjector.from_angles(float(a), elevation) for a in azimuths]
-    return [
-        CentralProjector.from_angles(float(a), elevation, distance, target) for a in azimuths
-    ]
+    return [CentralProjector.from_angles(float(a), elevation, distance, target) for a in azimuths]
