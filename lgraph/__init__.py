@@ -92,6 +92,7 @@ _EXPORTS: dict[str, str] = {
     "profile_from_points": ".surfaces.profiles",
     "orbit": ".projectors",
     "animate": ".animation",
+    "interact": ".notebook",
 }
 
 
@@ -173,4 +174,4 @@ __all__ += ["Label", "Point", "PlacedLabel", "Group"]
 __all__ += ["SurfaceOfRevolution", "Pseudosphere"]
 __all__ += ["Profile", "named_profile", "profile_from_points"]
 __all__ += ["LevelLines", "ParabolicLines", "SelfIntersection"]
-__all__ += ["orbit", "animate"]
+__all__ += ["orbit", "animate", "interact"]

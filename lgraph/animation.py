@@ -128,6 +128,11 @@ class _Job:
     kind: str  # "png", "svg", "pdf" (the frame file's bytes) or "drawing"
     render_options: dict
 
+    def __reduce__(self) -> tuple:
+        # the fields with cloudpickle when installed (scenes may hold lambdas);
+        # unpickling goes through _load, which counts it
+        return (_load, (_dumps(attrs.astuple(self, recurse=False)),))
+
     def render(self, view: Projector) -> Any:
         d = self.scene.render(view, **self.render_options)
         d = Drawing(strokes=d.strokes, page=self.page, background=d.background, window=self.window)
@@ -152,11 +157,11 @@ JOB_LOADS = [0]
 
 def _load(data: bytes) -> _Job:
     JOB_LOADS[0] += 1
-    return pickle.loads(data)
+    return _Job(*pickle.loads(data))
 
 
 def _install(data: bytes) -> None:
-    _INSTALLED["job"] = _load(data)
+    _INSTALLED["job"] = pickle.loads(data)
 
 
 def _render_installed(view: Projector) -> Any:
@@ -167,7 +172,7 @@ def _render_chunk(token: str, data: bytes, views: list[Projector]) -> list[Any]:
     job = _INSTALLED.get(token)
     if job is None:
         _INSTALLED.clear()  # one scene at a time per worker
-        job = _INSTALLED[token] = _load(data)
+        job = _INSTALLED[token] = pickle.loads(data)
     return [job.render(v) for v in views]
 
 
@@ -175,13 +180,13 @@ def _render_scattered(job: _Job, view: Projector) -> Any:
     return job.render(view)
 
 
-def _dumps(job: _Job) -> bytes:
-    """Pickle the job (with cloudpickle when installed: scenes may hold lambdas)."""
+def _dumps(obj: Any) -> bytes:
+    """Pickle ``obj`` (with cloudpickle when installed: scenes may hold lambdas)."""
     try:
         import cloudpickle
     except ImportError:
-        return pickle.dumps(job, protocol=pickle.HIGHEST_PROTOCOL)
-    return cloudpickle.dumps(job, protocol=pickle.HIGHEST_PROTOCOL)
+        return pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
+    return cloudpickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
 
 
 # -- progress --------------------------------------------------------------------------

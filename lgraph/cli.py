@@ -1,4 +1,4 @@
-"""Command line: ``lgraph demo | render | gallery | plugins``.
+"""Command line: ``lgraph demo | render | animate | gallery | plugins``.
 
 Input errors (a bad scene file, option, output path, ...) are found before
 any rendering where they can be; they exit with status 2 and one message
@@ -100,6 +100,50 @@ def _render(args: argparse.Namespace) -> int:
     return 0
 
 
+def _animate(args: argparse.Namespace) -> int:
+    from .animation import animate
+    from .frame_writers import ANIMATION_SUFFIXES
+    from .projectors import CentralProjector, orbit
+    from .scenefile import SceneFileError, load_scene_file
+
+    out = Path(args.output or Path(args.scene).with_suffix(".gif"))
+    suffix = out.suffix.lower()
+    if suffix and suffix not in ANIMATION_SUFFIXES:  # checked before any work
+        raise InputError(
+            f"unknown suffix {out.suffix!r} for an animation; use .gif, .png/.apng (APNG), "
+            ".webp, .pdf (a page per frame) or a folder name without suffix (numbered frames)"
+        )
+    _output_folder(out if not suffix else (out.parent if str(out.parent) else Path(".")))
+    client_class = None
+    if args.scheduler:
+        try:
+            from distributed import Client as client_class
+        except ImportError:
+            raise InputError(
+                "--scheduler needs dask.distributed; install it with pip install 'lgraph[cluster]'"
+            ) from None
+    try:
+        scene, projector, options = load_scene_file(args.scene)
+    except SceneFileError as e:
+        raise InputError(str(e)) from None
+    distance, target = args.distance, (0.0, 0.0, 0.0)
+    if isinstance(projector, CentralProjector):  # keep the scene file's eye distance
+        target = tuple(projector.target.tolist())
+        if distance is None:
+            distance = projector.distance
+    views = orbit(args.elevation, args.frames, distance, azimuth=args.azimuth, target=target)
+    render = dict(options.get("render", {}))
+    hidden = bool(render.pop("hidden_lines", False)) or args.hidden_lines
+    kw = dict(fps=args.fps, hidden_lines=hidden, width=args.width, render_options=render)
+    if client_class is not None:
+        with client_class(args.scheduler, timeout=args.timeout) as client:
+            path = animate(scene, views, out, executor=client.get_executor(), **kw)
+    else:
+        path = animate(scene, views, out, workers=args.workers, **kw)
+    print(f"wrote {Path(path).resolve()}")
+    return 0
+
+
 def _gallery(args: argparse.Namespace) -> int:
     from .gallery import build_gallery
 
@@ -164,6 +208,47 @@ def build_parser() -> argparse.ArgumentParser:
         "sort for short pen-up travel (Drawing.for_plotter)",
     )
     r.set_defaults(func=_render)
+    a = sub.add_parser(
+        "animate",
+        help="render a TOML scene file turning about the z axis (GIF, APNG, WebP, PDF, frames)",
+    )
+    a.add_argument("scene", help="scene file (.toml)")
+    a.add_argument(
+        "-o",
+        "--output",
+        help="output: .gif, .png (APNG), .webp, .pdf (a page per frame) or a folder for "
+        "numbered PNG frames; default: scene name .gif",
+    )
+    a.add_argument("--frames", type=_positive_int, default=36, help="number of frames (default 36)")
+    a.add_argument("--elevation", type=float, default=25.0, help="degrees (default 25)")
+    a.add_argument("--azimuth", type=float, default=0.0, help="of the first frame (default 0)")
+    a.add_argument(
+        "--distance",
+        type=float,
+        default=None,
+        help="central projection from this distance (default: the scene file's, else parallel)",
+    )
+    a.add_argument("--fps", type=float, default=12.0, help="frames per second (default 12)")
+    a.add_argument(
+        "--width", type=_positive_int, default=480, help="frame width in px (default 480)"
+    )
+    a.add_argument("--hidden-lines", action="store_true", help="draw hidden parts dashed")
+    a.add_argument(
+        "--workers",
+        type=_positive_int,
+        default=None,
+        help="local worker processes (default: automatic)",
+    )
+    a.add_argument(
+        "--scheduler",
+        default=None,
+        metavar="ADDRESS",
+        help="render on a Dask cluster (tcp://host:8786; needs lgraph[cluster])",
+    )
+    a.add_argument(
+        "--timeout", type=float, default=30.0, help="seconds to reach the scheduler (default 30)"
+    )
+    a.set_defaults(func=_animate)
     g = sub.add_parser("gallery", help="build every gallery figure (PDF + PNG) and index.html")
     g.add_argument("outdir", help="output folder (created if missing)")
     g.add_argument("-j", "--jobs", type=_positive_int, default=None, help="worker processes")

@@ -1,0 +1,142 @@
+"""The cache of view-independent geometry (lgraph.family_cache)."""
+
+from __future__ import annotations
+
+import gc
+
+import attrs
+import numpy as np
+import pytest
+
+import lgraph as lg
+from lgraph import family_cache
+from lgraph.families import Family
+
+VIEWS = [
+    lg.ParallelProjector.from_angles(30, 25),
+    lg.CentralProjector.from_angles(-70, 40, 14),
+    lg.ParallelProjector.from_angles(160, -10),
+]
+
+
+@pytest.fixture(autouse=True)
+def fresh_cache():
+    family_cache.clear()
+    family_cache.set_max_entries(family_cache.MAX_ENTRIES)
+    yield
+    family_cache.clear()
+    family_cache.set_max_entries(family_cache.MAX_ENTRIES)
+
+
+def _same(a: lg.Drawing, b: lg.Drawing) -> None:
+    assert len(a.strokes) == len(b.strokes)
+    for s, t in zip(a.strokes, b.strokes):
+        assert (s.family, s.visible, s.style, s.surface) == (t.family, t.visible, t.style, t.surface)
+        assert np.array_equal(s.xy, t.xy) and np.array_equal(s.xyz, t.xyz)
+        assert (s.uv is None) == (t.uv is None)
+        if s.uv is not None:
+            assert np.array_equal(s.uv, t.uv)
+
+
+def _scene() -> lg.Scene:
+    scene = lg.Scene()
+    scene.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(6, 7))
+    scene.add(lg.Torus(1.5, 0.5), lg.ParameterLines(6, 12), transform=lg.translate(0, 0, 2.2))
+    scene.add(lg.HyperboloidOneSheet(1, 1, 1), lg.AsymptoticLines(4, 4),
+              transform=lg.translate(0, 4.5, 0))  # fmt: skip
+    scene.add(lg.Curve(lambda t: np.stack([np.cos(t), np.sin(t), t / 3], -1), 0, 6))
+    return scene
+
+
+def test_cached_and_uncached_renders_give_identical_strokes():
+    scene = _scene()
+    cached = [scene.render(v, hidden_lines=True) for v in VIEWS]
+    info = family_cache.info()
+    assert info["misses"] == 3 and info["hits"] == 6  # three families, three views
+    family_cache.set_max_entries(0)  # off: every render computes everything
+    family_cache.clear()
+    for v, d in zip(VIEWS, cached):
+        _same(d, scene.render(v, hidden_lines=True))
+    assert family_cache.info()["hits"] == family_cache.info()["misses"] == 0
+
+
+def test_numeric_lines_of_curvature_are_cached_and_identical():
+    scene = lg.Scene()
+    scene.add(lg.Helicoid(), lg.LinesOfCurvature(2, 2))
+    first = [scene.render(v, tolerance=1e-2) for v in VIEWS[:2]]
+    assert family_cache.info()["misses"] == 1 and family_cache.info()["hits"] == 1
+    assert any(s.family == "curvature" for s in first[1].strokes)
+    family_cache.set_max_entries(0)  # the second view came from the cache
+    _same(first[1], scene.render(VIEWS[1], tolerance=1e-2))
+
+
+@attrs.frozen
+class Counting(Family):
+    """Parameter lines that count how often they are computed."""
+
+    calls: list = attrs.field(factory=list, eq=False)
+    view_dependent = False
+
+    def batches(self, surface, projector):
+        self.calls.append(projector)
+        return lg.ParameterLines(3, 3).batches(surface, projector)
+
+
+@attrs.frozen
+class CountingView(Counting):
+    view_dependent = True
+
+
+def test_view_independent_families_are_computed_once_view_dependent_ones_every_time():
+    fixed, moving = Counting(), CountingView()
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), fixed, moving)
+    for v in VIEWS:
+        scene.render(v)
+    assert len(fixed.calls) == 1
+    assert len(moving.calls) == len(VIEWS)
+    assert family_cache.is_view_dependent(lg.Contour())
+    assert not family_cache.is_view_dependent(lg.LinesOfCurvature())
+
+
+def test_a_changed_scene_is_recomputed():
+    scene = lg.Scene()
+    scene.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(4, 4))
+    before = scene.render(VIEWS[0])
+    # a node added after a render: drawn, and it hides part of the first
+    ball = scene.add(lg.Sphere(1.5), lg.LinesOfCurvature(3, 3), transform=lg.translate(0, 0, 1.5))
+    after = scene.render(VIEWS[0])
+    fresh = lg.Scene()
+    fresh.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(4, 4))
+    fresh.add(lg.Sphere(1.5), lg.LinesOfCurvature(3, 3), transform=lg.translate(0, 0, 1.5))
+    family_cache.set_max_entries(0)
+    _same(after, fresh.render(VIEWS[0]))
+    assert any(s.surface is ball.item for s in after.strokes)
+    assert len(after.strokes) != len(before.strokes)
+    # an equal-looking scene with other parameters shares nothing
+    family_cache.set_max_entries(10)
+    other = lg.Scene()
+    other.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(5, 4))
+    n = family_cache.info()["misses"]
+    d = other.render(VIEWS[0])
+    assert family_cache.info()["misses"] == n + 1
+    assert len([s for s in d.strokes if s.family == "curvature"]) > len(
+        [s for s in before.strokes if s.family == "curvature"]
+    )
+
+
+def test_memory_is_bounded_and_dead_nodes_are_dropped():
+    family_cache.set_max_entries(2)
+    scene = lg.Scene()
+    for k in range(5):
+        scene.add(lg.Sphere(1), lg.ParameterLines(2 + k, 3), transform=lg.translate(3 * k, 0, 0))
+    scene.render(VIEWS[0])
+    assert family_cache.info()["entries"] == 2
+    family_cache.set_max_entries(10)
+    scene.render(VIEWS[0])
+    assert family_cache.info()["entries"] == 5
+    del scene
+    gc.collect()
+    assert family_cache.info()["entries"] == 0
+    with pytest.raises(ValueError, match="non-negative integer"):
+        family_cache.set_max_entries(1.5)
