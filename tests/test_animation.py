@@ -1,0 +1,286 @@
+"""lg.orbit and lg.animate: views, formats, frame sizes, atomic writes, executors."""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import io
+import math
+import re
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import lgraph as lg
+from lgraph import animation
+from lgraph.cli import main as cli_main
+
+
+@pytest.fixture(scope="module")
+def scene() -> lg.Scene:
+    s = lg.Scene()
+    s.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(5, 6))
+    return s
+
+
+VIEWS = lg.orbit(elevation=25, frames=5)
+WIDTH = 96
+
+
+def _frames(path) -> list[np.ndarray]:
+    im = Image.open(path)
+    out = []
+    for k in range(getattr(im, "n_frames", 1)):
+        im.seek(k)
+        out.append(np.asarray(im.convert("RGB"), dtype=int))
+    return out
+
+
+def _reference(scene, views, width=WIDTH, hidden_lines=False) -> list[np.ndarray]:
+    """Each frame rendered on its own: the scene, the common window, write_png."""
+    window = animation.frame_window(scene, views)
+    m = 0.03 * width
+    h = max(16, round((width - 2 * m) * (window[3] - window[1]) / (window[2] - window[0]) + 2 * m))
+    page = lg.Page(width=float(width), height=float(h), margin=m)
+    out = []
+    for v in views:
+        d = scene.render(v, hidden_lines=hidden_lines)
+        d = lg.Drawing(d.strokes, page=page, window=window)
+        buf = io.BytesIO()
+        d.save(buf, format="png", size=(width, h))
+        out.append(np.asarray(Image.open(io.BytesIO(buf.getvalue())).convert("RGB"), dtype=int))
+    return out
+
+
+# -- orbit ----------------------------------------------------------------------------
+def test_orbit_parallel_views_turn_about_z_at_constant_elevation():
+    views = lg.orbit(elevation=30, frames=8, azimuth=10)
+    assert len(views) == 8
+    d = np.array([v.frame[2] for v in views])
+    np.testing.assert_allclose(d[:, 2], math.sin(math.radians(30)), atol=1e-12)
+    az = np.degrees(np.arctan2(d[:, 1], d[:, 0]))
+    np.testing.assert_allclose(np.diff(np.unwrap(np.radians(az))), math.radians(45), atol=1e-12)
+    assert az[0] == pytest.approx(10)
+
+
+def test_orbit_central_views_keep_their_distance():
+    views = lg.orbit(elevation=-20, frames=6, distance=12, target=(1, 2, 3))
+    for v in views:
+        assert isinstance(v, lg.CentralProjector)
+        assert np.linalg.norm(v.eye - (1, 2, 3)) == pytest.approx(12)
+        assert (v.eye[2] - 3) / 12 == pytest.approx(-math.sin(math.radians(20)))
+    with pytest.raises(ValueError, match="distance must be a positive"):
+        lg.orbit(frames=2, distance=-1)
+    with pytest.raises(ValueError, match="turn must be a finite"):
+        lg.orbit(turn=float("nan"))
+
+
+# -- formats ----------------------------------------------------------------------------
+def test_gif_has_every_frame_at_the_requested_size(scene, tmp_path):
+    path = lg.animate(scene, VIEWS, tmp_path / "t.gif", width=WIDTH, fps=10, progress=False)
+    im = Image.open(path)
+    assert im.n_frames == len(VIEWS)
+    assert im.info["duration"] == 100 and im.info["loop"] == 0
+    got, want = _frames(path), _reference(scene, VIEWS)
+    assert got[0].shape == want[0].shape and got[0].shape[1] == WIDTH
+    for g, w in zip(got, want):
+        # a palette of up to 256 colours: small differences in anti-aliased grey
+        assert np.abs(g - w).mean() < 1.0 and np.abs(g - w).max() < 40
+    assert not np.array_equal(got[0], got[1])  # the frames differ: it turns
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.gif"]
+
+
+@pytest.mark.parametrize("name", ["t.png", "t.apng", "t.webp"])
+def test_apng_and_webp_are_lossless(scene, tmp_path, name):
+    path = lg.animate(scene, VIEWS, tmp_path / name, width=WIDTH, fps=8, progress=False)
+    got, want = _frames(path), _reference(scene, VIEWS)
+    assert len(got) == len(VIEWS)
+    for g, w in zip(got, want):
+        assert np.array_equal(g, w)
+    if name != "t.webp":
+        assert Image.open(path).info["duration"] == pytest.approx(125)
+
+
+def test_pdf_has_one_page_per_frame(scene, tmp_path):
+    path = lg.animate(scene, VIEWS, tmp_path / "t.pdf", width=200, progress=False)
+    data = path.read_bytes()
+    assert data.startswith(b"%PDF-")
+    assert len(re.findall(rb"/Type /Page\b", data)) == len(VIEWS)
+    boxes = set(re.findall(rb"/MediaBox \[([^\]]*)\]", data))
+    assert len(boxes) == 1  # every page the same size
+    w = float(boxes.pop().split()[2])
+    assert w == pytest.approx(200)
+
+
+@pytest.mark.parametrize("fmt", ["png", "svg", "pdf"])
+def test_folder_of_numbered_frames(scene, tmp_path, fmt):
+    out = lg.animate(scene, VIEWS, tmp_path / "frames", width=WIDTH, frame_format=fmt,
+                     progress=False)  # fmt: skip
+    names = sorted(p.name for p in out.iterdir())
+    assert names == [f"frame_{k:04d}.{fmt}" for k in range(len(VIEWS))]
+    if fmt == "png":
+        want = _reference(scene, VIEWS)
+        for k, p in enumerate(sorted(out.iterdir())):
+            assert np.array_equal(np.asarray(Image.open(p).convert("RGB"), dtype=int), want[k])
+
+
+def test_the_figure_keeps_its_scale_and_stays_inside(scene, tmp_path):
+    views = lg.orbit(elevation=10, frames=12, distance=14)
+    frames = _frames(lg.animate(scene, views, tmp_path / "t.png", width=120, progress=False))
+    heights = []
+    for f in frames:
+        ink = np.argwhere(f.min(axis=2) < 160)
+        assert len(ink)
+        (r0, c0), (r1, c1) = ink.min(axis=0), ink.max(axis=0)
+        assert r0 > 0 and c0 > 0 and r1 < f.shape[0] - 1 and c1 < f.shape[1] - 1
+        heights.append(r1 - r0)
+    # the ellipsoid's height in the picture hardly changes as it turns
+    assert max(heights) - min(heights) <= 0.12 * max(heights)
+
+
+def test_hidden_lines(scene, tmp_path):
+    a = _frames(lg.animate(scene, VIEWS[:2], tmp_path / "a.png", width=WIDTH, progress=False))
+    b = _frames(lg.animate(scene, VIEWS[:2], tmp_path / "b.png", width=WIDTH, progress=False,
+                           hidden_lines=True))  # fmt: skip
+    assert (b[0].min(axis=2) < 250).sum() > (a[0].min(axis=2) < 250).sum()
+    assert np.array_equal(b[0], _reference(scene, VIEWS[:2], hidden_lines=True)[0])
+
+
+# -- errors and interruptions ---------------------------------------------------------------
+def test_a_failing_frame_leaves_no_file(scene, tmp_path):
+    views = [*VIEWS[:2], lg.CentralProjector(eye=(0.1, 0, 0))]  # the eye inside the ellipsoid
+    for name in ("t.gif", "t.png", "t.webp", "t.pdf"):
+        with pytest.raises(ValueError, match="behind the eye"):
+            lg.animate(scene, views, tmp_path / name, width=WIDTH, progress=False)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_interrupt_leaves_no_half_written_file(scene, tmp_path, monkeypatch):
+    real = animation._Job.render
+    count = []
+
+    def render(self, view):
+        count.append(1)
+        if len(count) == 3:
+            raise KeyboardInterrupt
+        return real(self, view)
+
+    monkeypatch.setattr(animation._Job, "render", render)
+    with pytest.raises(KeyboardInterrupt):
+        lg.animate(scene, VIEWS, tmp_path / "t.gif", width=WIDTH, progress=False, workers=1)
+    assert list(tmp_path.iterdir()) == []
+    count.clear()
+    with pytest.raises(KeyboardInterrupt):
+        lg.animate(scene, VIEWS, tmp_path / "f", width=WIDTH, progress=False, workers=1)
+    # the complete frames stay, nothing half-written
+    assert sorted(p.name for p in (tmp_path / "f").iterdir()) == ["frame_0000.png", "frame_0001.png"]
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"fps": 0}, "fps must be a number in"),
+        ({"width": 8}, "width must be an integer from 16"),
+        ({"workers": 0}, "workers must be a positive integer"),
+        ({"loop": -1}, "loop must be an integer"),
+        ({"frame_format": "jpg"}, "frame_format must be one of png, svg, pdf"),
+    ],
+)
+def test_bad_arguments_are_clear(scene, tmp_path, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        lg.animate(scene, VIEWS, tmp_path / "out", progress=False, **kwargs)
+
+
+def test_bad_paths_scenes_views_and_executors(scene, tmp_path):
+    with pytest.raises(ValueError, match="unknown suffix '.mp4'"):
+        lg.animate(scene, VIEWS, tmp_path / "t.mp4", progress=False)
+    with pytest.raises(FileNotFoundError, match="does not exist"):
+        lg.animate(scene, VIEWS, tmp_path / "no" / "t.gif", progress=False)
+    with pytest.raises(ValueError, match="views is empty"):
+        lg.animate(scene, [], tmp_path / "t.gif", progress=False)
+    with pytest.raises(TypeError, match=r"views\[1\] must be a Projector"):
+        lg.animate(scene, [VIEWS[0], "side"], tmp_path / "t.gif", progress=False)
+    with pytest.raises(TypeError, match="scene must be a Scene"):
+        lg.animate(lg.Sphere(1), VIEWS, tmp_path / "t.gif", progress=False)
+    with pytest.raises(TypeError, match="concurrent.futures.Executor"):
+        lg.animate(scene, VIEWS, tmp_path / "t.gif", progress=False, executor=4)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_progress_bar_only_on_a_terminal():
+    class Tty(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    tty, pipe = Tty(), io.StringIO()
+    for stream in (tty, pipe):
+        bar = animation._Progress(3, True, stream)
+        for _ in range(3):
+            bar.update()
+        bar.close()
+    assert "3/3 frames" in tty.getvalue() and "\r" in tty.getvalue()
+    assert pipe.getvalue() == ""
+    quiet = Tty()
+    bar = animation._Progress(3, False, quiet)
+    bar.update()
+    assert quiet.getvalue() == ""
+
+
+# -- executors --------------------------------------------------------------------------
+def test_executors_give_the_frames_of_a_serial_run(scene, tmp_path):
+    views = lg.orbit(elevation=25, frames=6, distance=15)
+    serial = lg.animate(scene, views, tmp_path / "s.png", width=WIDTH, progress=False, workers=1)
+    want = serial.read_bytes()
+    with cf.ThreadPoolExecutor(2) as ex:
+        p = lg.animate(scene, views, tmp_path / "t.png", width=WIDTH, progress=False, executor=ex)
+        assert p.read_bytes() == want
+    with cf.ProcessPoolExecutor(2) as ex:
+        p = lg.animate(scene, views, tmp_path / "p.png", width=WIDTH, progress=False, executor=ex)
+        assert p.read_bytes() == want
+    p = lg.animate(scene, views, tmp_path / "w.png", width=WIDTH, progress=False, workers=2)
+    assert p.read_bytes() == want
+
+
+# -- the command line -------------------------------------------------------------------------
+SCENE_FILE = """
+[projector]
+kind = "central"
+azimuth = 35
+elevation = 25
+distance = 16
+
+[[object]]
+surface = "ellipsoid"
+params = { a = 3, b = 2, c = 1.3 }
+families = [{ name = "lines_of_curvature", n1 = 5, n2 = 6 }]
+"""
+
+
+def test_cli_animate(tmp_path, capsys):
+    f = tmp_path / "scene.toml"
+    f.write_text(SCENE_FILE, encoding="utf-8")
+    out = tmp_path / "turn.gif"
+    argv = ["animate", str(f), "-o", str(out), "--frames", "4", "--elevation", "25",
+            "--fps", "24", "--width", "80", "--workers", "1"]  # fmt: skip
+    assert cli_main(argv) == 0
+    assert str(out.resolve()) in capsys.readouterr().out
+    im = Image.open(out)
+    assert im.n_frames == 4 and im.size[0] == 80 and im.info["duration"] == 40
+    # the scene file's central projection: the eye keeps its distance
+    views = lg.orbit(25, 4, 16.0)
+    scene, _, _ = lg.load_scene_file(f)
+    want = _reference(scene, views, width=80)
+    got = _frames(out)
+    assert all(np.abs(g - w).mean() < 1.0 for g, w in zip(got, want))
+
+
+def test_cli_animate_errors(tmp_path, capsys):
+    f = tmp_path / "scene.toml"
+    f.write_text(SCENE_FILE, encoding="utf-8")
+    assert cli_main(["animate", str(f), "-o", str(tmp_path / "t.avi"), "--frames", "2"]) == 1
+    assert "unknown suffix '.avi'" in capsys.readouterr().err
+    assert cli_main(["animate", str(tmp_path / "missing.toml")]) == 2
+    with pytest.raises(SystemExit) as e:
+        cli_main(["animate", "--help"])
+    assert e.value.code == 0
+    assert "--scheduler" in capsys.readouterr().out
