@@ -7,8 +7,8 @@ rendered again with another projector (a turntable, an interactive view)
 computes them once; only the contour, the sampling and the visibility are
 redone per view.
 
-Safety
-------
+Safety:
+
 * The key is the :class:`~lgraph.Node` object itself (held weakly: a node
   that is garbage-collected drops its entries), the family's position in the
   node and the family object.  Nodes, surfaces and families are immutable, so
@@ -20,9 +20,7 @@ Safety
 * The cache lives in the process: it is not pickled with a scene, and each
   worker process of a parallel animation fills its own.
 
-Memory
-------
-At most :data:`MAX_ENTRIES` family results are kept, least recently used
+Memory: at most :data:`MAX_ENTRIES` family results are kept, least recently used
 evicted first.  One entry holds the curves of one family on one node: for
 closed forms a few closures, for numeric lines of curvature the integrator's
 dense output (typically well under 10 MB for a figure's 30 lines), so the

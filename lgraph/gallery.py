@@ -6,7 +6,11 @@ A gallery script (``gallery/<stem>.py``) is a short module that defines
 * ``build()`` returning ``(scene, projector)``, or ``(scene, projector, render_kwargs)``
   (e.g. ``{"hidden_lines": True}``), or a list of such tuples, one per panel;
 * ``if __name__ == "__main__": run_script_main(__file__, build)``, which writes
-  ``<stem>.pdf`` and ``<stem>.png`` into the current folder.
+  ``<stem>.pdf`` and ``<stem>.png`` into the current folder;
+* optionally ``ANIMATION``, a dict of :func:`lgraph.orbit` and
+  :func:`lgraph.animate` keywords (``frames``, ``elevation``, ``distance``,
+  ``fps``, ``width``, ``hidden_lines``): the figure (its first panel) also
+  turns about the z axis in ``<stem>.gif``, which is then its thumbnail.
 
 Multi-panel figures become one drawing: the panels are scaled to a common
 height and laid out left to right (:func:`render_figure`), so every figure is
@@ -54,6 +58,7 @@ __all__ = [
     "render_figure",
     "run_script_main",
     "script_caption",
+    "script_animation",
     "figure_title",
 ]
 
@@ -123,6 +128,40 @@ def script_caption(path: str | os.PathLike[str]) -> str:
                 return ""
             return v if isinstance(v, str) else ""
     return ""
+
+
+def script_animation(path: str | os.PathLike[str]) -> dict[str, Any] | None:
+    """The script's ``ANIMATION`` dict read from its source (without running
+    it); None if it has none or it is not a plain literal."""
+    try:
+        tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    except (OSError, SyntaxError, ValueError):
+        return None
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(
+            isinstance(t, ast.Name) and t.id == "ANIMATION" for t in node.targets
+        ):
+            try:
+                value = ast.literal_eval(node.value)
+            except ValueError:
+                return None
+            return value if isinstance(value, dict) else None
+    return None
+
+
+_ORBIT_KEYS = ("frames", "elevation", "distance", "azimuth")
+
+
+def _animate(result: Any, spec: dict[str, Any], path: Path) -> Path:
+    """Write the turntable of a script's first panel (``ANIMATION = {...}``)."""
+    from .animation import animate
+    from .projectors import orbit
+
+    scene, _, kwargs = _panels(result)[0]
+    views = orbit(**{k: spec[k] for k in _ORBIT_KEYS if k in spec})
+    options = {k: v for k, v in spec.items() if k not in _ORBIT_KEYS}
+    options.setdefault("hidden_lines", kwargs.get("hidden_lines", False))
+    return animate(scene, views, path, progress=False, workers=1, **options)
 
 
 def figure_title(stem: str) -> str:
@@ -219,10 +258,15 @@ def _save(drawing: Any, folder: Path, stem: str) -> list[Path]:
 
 def run_script_main(file: str, build: Callable[[], Any]) -> list[Path]:
     """The ``__main__`` block of a gallery script: render ``build()`` and write
-    ``<stem>.pdf`` and ``<stem>.png`` into the current folder."""
+    ``<stem>.pdf`` and ``<stem>.png`` into the current folder (and
+    ``<stem>.gif`` when the script defines ``ANIMATION``)."""
     stem = Path(file).stem
     t0 = time.perf_counter()
-    paths = _save(render_figure(build()), Path("."), stem)
+    result = build()
+    paths = _save(render_figure(result), Path("."), stem)
+    spec = script_animation(file)
+    if spec:
+        paths.append(_animate(result, spec, Path(f"{stem}.gif")))
     for p in paths:
         print(f"wrote {p.resolve()}")
     print(f"{stem}: {time.perf_counter() - t0:.1f} s")
@@ -240,11 +284,16 @@ def _build_one(path: str, outdir: str, tolerance: float | None) -> dict[str, Any
         info["caption"] = caption if isinstance(caption, str) else None
         if not callable(getattr(module, "build", None)):
             raise AttributeError(f"gallery script {stem} defines no build() function")
-        drawing = render_figure(module.build(), tolerance)
+        result = module.build()
+        drawing = render_figure(result, tolerance)
         if not drawing.strokes:
             raise ValueError(f"gallery script {stem} drew nothing (no strokes)")
         _save(drawing, Path(outdir), stem)
         info["strokes"] = len(drawing.strokes)
+        spec = getattr(module, "ANIMATION", None)
+        if spec:
+            _animate(result, dict(spec), Path(outdir) / f"{stem}.gif")
+            info["animation"] = True
     except BaseException:  # noqa: BLE001 - report everything, keep going
         info["error"] = traceback.format_exc()
     info["seconds"] = time.perf_counter() - t0
@@ -303,13 +352,15 @@ def _card(item: dict[str, Any]) -> str:
             f"<pre>build failed: {e(last)}</pre></figcaption>"
             f'<div class="links">{src}</div></figure>'
         )
+    thumb = f"{e(stem)}.gif" if item.get("animation") else f"{e(stem)}.png"
+    gif = f'<a href="{e(stem)}.gif">GIF</a>' if item.get("animation") else ""
     return (
         f'<figure id="{e(stem)}">'
-        f'<a class="thumb" href="{e(stem)}.pdf"><img class="thumbnail" src="{e(stem)}.png" '
+        f'<a class="thumb" href="{e(stem)}.pdf"><img class="thumbnail" src="{thumb}" '
         f'alt="{title}"></a>'
         f"<figcaption><b>{title}</b>{caption}</figcaption>"
         f'<div class="links"><a href="{e(stem)}.pdf">PDF</a><a href="{e(stem)}.png">PNG</a>'
-        f"{src}</div></figure>"
+        f"{gif}{src}</div></figure>"
     )
 
 

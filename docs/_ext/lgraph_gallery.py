@@ -58,9 +58,10 @@ class GalleryDirective(SphinxDirective):
             stem = e(p.stem)
             title = e(gallery.figure_title(p.stem))
             caption = e(gallery.script_caption(p))
+            thumb = "gif" if gallery.script_animation(p) else "png"
             cards.append(
                 f'<div class="lg-card" id="fig-{stem}"><a href="{base}{stem}.pdf">'
-                f'<img src="{base}{stem}.png" alt="{title}" loading="lazy"></a>'
+                f'<img src="{base}{stem}.{thumb}" alt="{title}" loading="lazy"></a>'
                 f'<p class="lg-title">{title}</p><p class="lg-caption">{caption}</p>'
                 f'<p class="lg-links"><a href="{base}{stem}.pdf">PDF</a> '
                 f'<a href="{base}{stem}.png">PNG</a> <a href="{base}src/{stem}.py">source</a>'
