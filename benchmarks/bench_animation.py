@@ -52,8 +52,9 @@ def turntable(stem: str, tmp: Path) -> dict:
     cold = _timed(lambda: scene.render(projector))
     family_cache.clear()
     serial = _timed(lambda: lg.animate(scene, views, tmp / "a.gif", progress=False, workers=1))
-    family_cache.set_max_entries(0)
-    uncached = _timed(lambda: lg.animate(scene, views, tmp / "b.gif", progress=False, workers=1))
+    family_cache.set_max_entries(0)  # 4 of the 24 frames, times 6: as before the cache
+    four = views[::6]
+    uncached = 6 * _timed(lambda: lg.animate(scene, four, tmp / "b.gif", progress=False, workers=1))
     family_cache.set_max_entries(family_cache.MAX_ENTRIES)
     family_cache.clear()
     default = _timed(lambda: lg.animate(scene, views, tmp / "c.gif", progress=False))

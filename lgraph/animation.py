@@ -31,6 +31,7 @@ per worker.
 from __future__ import annotations
 
 import concurrent.futures as cf
+import io
 import math
 import os
 import pickle
@@ -133,7 +134,10 @@ class _Job:
         # unpickling goes through _load, which counts it
         return (_load, (_dumps(attrs.astuple(self, recurse=False)),))
 
-    def render(self, view: Projector) -> Any:
+    def render(self, view: Projector, portable: bool = False) -> Any:
+        """Frame for ``view``: a pillow image (raster kinds; PNG bytes, fast to
+        encode, when ``portable``, i.e. sent back from another process), the
+        frame file's bytes (SVG, PDF) or a slim drawing (PDF pages)."""
         d = self.scene.render(view, **self.render_options)
         d = Drawing(strokes=d.strokes, page=self.page, background=d.background, window=self.window)
         if self.kind == "drawing":  # only what a page needs: no xyz, uv, surface
@@ -142,10 +146,17 @@ class _Job:
                 for s in d.strokes
             )
             return attrs.evolve(d, strokes=slim)
+        if self.kind == "png":
+            from .backends.png import render_image
+
+            im, _ = render_image(d, size=self.size)
+            if not portable:
+                return im
+            buf = io.BytesIO()
+            im.save(buf, "PNG", compress_level=1)
+            return buf.getvalue()
         from .display import to_bytes
 
-        if self.kind == "png":
-            return to_bytes(d, "png", size=self.size)
         return to_bytes(d, self.kind)
 
 
@@ -165,7 +176,7 @@ def _install(data: bytes) -> None:
 
 
 def _render_installed(view: Projector) -> Any:
-    return _INSTALLED["job"].render(view)
+    return _INSTALLED["job"].render(view, True)
 
 
 def _render_chunk(token: str, data: bytes, views: list[Projector]) -> list[Any]:
@@ -173,11 +184,11 @@ def _render_chunk(token: str, data: bytes, views: list[Projector]) -> list[Any]:
     if job is None:
         _INSTALLED.clear()  # one scene at a time per worker
         job = _INSTALLED[token] = pickle.loads(data)
-    return [job.render(v) for v in views]
+    return [job.render(v, True) for v in views]
 
 
 def _render_scattered(job: _Job, view: Projector) -> Any:
-    return job.render(view)
+    return job.render(view, True)
 
 
 def _dumps(obj: Any) -> bytes:
@@ -402,7 +413,7 @@ def animate(
     job = _Job(scene, window, page, (width, height), kind, options)
 
     bar = _Progress(len(views), progress)
-    pool = None
+    pool = frames = None
     try:
         frames, pool = _frames(job, views, executor, workers)
         for frame in frames:
@@ -411,6 +422,8 @@ def animate(
         result = writer.close()
     except BaseException:
         writer.abort()
+        if frames is not None:
+            frames.close()  # cancels the frames not yet started
         if pool is not None:
             pool.shutdown(wait=False, cancel_futures=True)
             pool = None

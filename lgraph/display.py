@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+import weakref
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
 
@@ -112,18 +113,19 @@ def default_view() -> Projector:
     return ParallelProjector.from_angles(*DEFAULT_VIEW)
 
 
+_SHOWN: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
 def scene_drawing(scene: Scene) -> Drawing:
-    """The scene rendered from :data:`DEFAULT_VIEW` (remembered until a node is added)."""
+    """The scene rendered from :data:`DEFAULT_VIEW` (remembered until a node is
+    added: IPython asks for the SVG and the PNG of the same scene)."""
     nodes = scene.nodes
-    memo = getattr(scene, "_display_memo", None)
-    if (
-        memo is not None
-        and len(memo[0]) == len(nodes)
-        and all(a is b for a, b in zip(memo[0], nodes))
-    ):
-        return memo[1]
+    memo = _SHOWN.get(scene)
+    if memo is not None and len(memo[0]) == len(nodes):
+        if all(a is b for a, b in zip(memo[0], nodes)):
+            return memo[1]
     drawing = scene.render(default_view())
-    scene._display_memo = (nodes, drawing)  # type: ignore[attr-defined]
+    _SHOWN[scene] = (nodes, drawing)
     return drawing
 
 

@@ -1,11 +1,12 @@
 """Writers that stream animation frames into one file or a folder, atomically.
 
-Each writer takes frames one at a time (``add``) and keeps only what the
-format needs to finish the file, never the decoded frames:
+Each writer takes frames one at a time (``add``: a pillow image or PNG bytes
+for raster formats) and keeps only what the format needs to finish the file,
+never the decoded frames:
 
 * :class:`GifWriter` -- animated GIF; every frame is quantized to its own
-  256-colour palette by pillow and spliced in as it comes (pillow's own
-  ``save_all`` holds every frame until the end);
+  256-colour palette by pillow (fast octree) and spliced in as it comes
+  (pillow's own ``save_all`` holds every frame until the end);
 * :class:`ApngWriter` -- animated PNG: pillow's PNG encoding of each frame,
   its ``IDAT`` data re-chunked as the APNG ``fdAT`` frames;
 * :class:`WebpWriter` -- animated WebP through pillow (libwebp assembles the
@@ -136,13 +137,29 @@ def _skip_blocks(data: bytes, pos: int) -> int:
     return pos + 1
 
 
-def _gif_frame(png: bytes) -> tuple[tuple[int, int], bytes, bytes]:
+def as_image(frame: Any) -> Any:
+    """A raster frame as a pillow RGB(A) image: from an image or PNG bytes."""
+    from PIL import Image
+
+    if isinstance(frame, (bytes, bytearray)):
+        frame = Image.open(io.BytesIO(frame))
+        frame.load()
+    return frame
+
+
+def _png_bytes(im: Any) -> bytes:
+    buf = io.BytesIO()
+    im.save(buf, "PNG")
+    return buf.getvalue()
+
+
+def _gif_frame(frame: Any) -> tuple[tuple[int, int], bytes, bytes]:
     """Encode one frame as GIF with pillow; return its size, its image
     descriptor with a local colour table, and its LZW image data."""
     from PIL import Image
 
-    im = Image.open(io.BytesIO(png)).convert("RGB")
-    pal = im.quantize(colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+    im = as_image(frame).convert("RGB")
+    pal = im.quantize(colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
     buf = io.BytesIO()
     pal.save(buf, "GIF")
     data = buf.getvalue()
@@ -184,7 +201,7 @@ class GifWriter(FrameWriter):
         self.delay = max(2, round(100 / fps))
         self.size: tuple[int, int] | None = None
 
-    def _add(self, frame: bytes) -> None:
+    def _add(self, frame: Any) -> None:
         size, desc, image = _gif_frame(frame)
         f = self._file
         if self.size is None:
@@ -232,8 +249,8 @@ class ApngWriter(FrameWriter):
             num, den = max(1, num >> 1), den >> 1
         self.delay = (num, den)
 
-    def _add(self, frame: bytes) -> None:
-        chunks = _png_chunks(frame)
+    def _add(self, frame: Any) -> None:
+        chunks = _png_chunks(_png_bytes(as_image(frame)))
         ihdr = next(body for kind, body in chunks if kind == b"IHDR")
         f = self._file
         if self.ihdr is None:
@@ -268,8 +285,10 @@ class WebpWriter(FrameWriter):
         self.loop = loop
         self.frames: list[bytes] = []
 
-    def _add(self, frame: bytes) -> None:
-        self.frames.append(frame)
+    def _add(self, frame: Any) -> None:
+        buf = io.BytesIO()  # held until the end: compressed, quickly
+        as_image(frame).save(buf, "PNG", compress_level=1)
+        self.frames.append(buf.getvalue())
 
     def _finish(self) -> None:
         from PIL import Image
@@ -317,7 +336,8 @@ class PdfPagesWriter(FrameWriter):
 class FolderWriter:
     """Numbered frames ``frame_0000.<fmt>`` in a folder (created if missing).
 
-    Frames come as the bytes of their file; each is written atomically (a
+    Frames come as the bytes of their file (or a pillow image, saved as PNG);
+    each is written atomically (a
     temporary name, then a rename), so an interrupted run leaves only
     complete frames.
     """
@@ -335,7 +355,9 @@ class FolderWriter:
     def frame_path(self, k: int) -> Path:
         return self.folder / f"frame_{k:0{self.digits}d}.{self.fmt}"
 
-    def add(self, data: bytes) -> None:
+    def add(self, data: Any) -> None:
+        if not isinstance(data, (bytes, bytearray)):
+            data = _png_bytes(data)
         path = self.frame_path(self.count)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=self.folder)
         try:

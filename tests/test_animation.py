@@ -173,7 +173,10 @@ def test_an_interrupt_leaves_no_half_written_file(scene, tmp_path, monkeypatch):
     with pytest.raises(KeyboardInterrupt):
         lg.animate(scene, VIEWS, tmp_path / "f", width=WIDTH, progress=False, workers=1)
     # the complete frames stay, nothing half-written
-    assert sorted(p.name for p in (tmp_path / "f").iterdir()) == ["frame_0000.png", "frame_0001.png"]
+    assert sorted(p.name for p in (tmp_path / "f").iterdir()) == [
+        "frame_0000.png",
+        "frame_0001.png",
+    ]
 
 
 @pytest.mark.parametrize(

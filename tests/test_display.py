@@ -68,7 +68,9 @@ def test_save_to_a_file_object_equals_the_file(drawing, tmp_path, suffix):
     got, want = buf.getvalue()[5:], path.read_bytes()
     assert buf.getvalue()[:5] == b"head:"
     if suffix == ".pdf":  # the creation date and document id differ
-        strip = re.compile(rb"/(CreationDate|ModDate) \(D:[^)]*\)|/ID\s*\[[^\]]*\]|% ReportLab[^\n]*")
+        strip = re.compile(
+            rb"/(CreationDate|ModDate) \(D:[^)]*\)|/ID\s*\[[^\]]*\]|% ReportLab[^\n]*"
+        )
         got, want = strip.sub(b"", got), strip.sub(b"", want)
     assert got == want
     assert sorted(p.name for p in tmp_path.iterdir()) == [f"a{suffix}"]

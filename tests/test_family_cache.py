@@ -31,7 +31,12 @@ def fresh_cache():
 def _same(a: lg.Drawing, b: lg.Drawing) -> None:
     assert len(a.strokes) == len(b.strokes)
     for s, t in zip(a.strokes, b.strokes):
-        assert (s.family, s.visible, s.style, s.surface) == (t.family, t.visible, t.style, t.surface)
+        assert (s.family, s.visible, s.style, s.surface) == (
+            t.family,
+            t.visible,
+            t.style,
+            t.surface,
+        )
         assert np.array_equal(s.xy, t.xy) and np.array_equal(s.xyz, t.xyz)
         assert (s.uv is None) == (t.uv is None)
         if s.uv is not None:

@@ -32,7 +32,7 @@ import numpy as np
 from ..drawing import dash_polyline
 from ._common import background_rgb, check_options, page_runs, positive_finite
 
-__all__ = ["write_png", "MAX_SIDE"]
+__all__ = ["write_png", "render_image", "MAX_SIDE"]
 
 #: Largest allowed output image side in pixels.
 MAX_SIDE = 20000
@@ -167,8 +167,24 @@ def write_png(
     ):
         raise ValueError(f"write_png: supersample must be an integer in 1..8, got {supersample!r}")
 
-    from PIL import Image, ImageDraw
     from PIL.PngImagePlugin import PngInfo
+
+    img, eff_dpi = render_image(drawing, dpi=dpi, size=size, supersample=supersample)
+    info = PngInfo()
+    info.add_text("Software", "lgraph")
+    img.save(path, format="PNG", dpi=(eff_dpi, eff_dpi), pnginfo=info)
+
+
+def render_image(
+    drawing: Any,
+    *,
+    dpi: float = 150,
+    size: int | tuple[int, int] | None = None,
+    supersample: int = 3,
+) -> tuple[Any, float]:
+    """The drawing as a pillow image (options as for :func:`write_png`, already
+    checked) and its effective dpi; :func:`write_png` saves it."""
+    from PIL import Image, ImageDraw
 
     pw, ph = drawing.page_size()
     w, h, sx, sy, centre = _image_size(pw, ph, dpi, size)
@@ -234,7 +250,4 @@ def write_png(
         png_labels(img, drawing, mat, off, mode == "RGBA")
     if ss > 1:
         img = img.reduce(ss)
-    eff_dpi = 72.0 * math.sqrt(sx * sy)
-    info = PngInfo()
-    info.add_text("Software", "lgraph")
-    img.save(path, format="PNG", dpi=(eff_dpi, eff_dpi), pnginfo=info)
+    return img, 72.0 * math.sqrt(sx * sy)
