@@ -6,6 +6,7 @@ import concurrent.futures as cf
 import io
 import math
 import re
+import sys
 
 import numpy as np
 import pytest
@@ -287,3 +288,13 @@ def test_cli_animate_errors(tmp_path, capsys):
         cli_main(["animate", "--help"])
     assert e.value.code == 0
     assert "--scheduler" in capsys.readouterr().out
+
+
+def test_cli_scheduler_without_dask_is_a_clear_error(tmp_path, capsys, monkeypatch):
+    f = tmp_path / "scene.toml"
+    f.write_text(SCENE_FILE, encoding="utf-8")
+    monkeypatch.setitem(sys.modules, "distributed", None)
+    argv = ["animate", str(f), "-o", str(tmp_path / "t.gif"), "--scheduler", "tcp://x:8786"]
+    assert cli_main(argv) == 2
+    assert "lgraph[cluster]" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == [f]

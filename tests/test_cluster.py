@@ -7,13 +7,28 @@ the animation equals a serial run byte for byte.
 from __future__ import annotations
 
 import pytest
+from PIL import Image
 
 import lgraph as lg
 from lgraph import animation
+from lgraph.cli import main as cli_main
 
 distributed = pytest.importorskip(
     "distributed", reason="dask.distributed is not installed (pip install 'lgraph[cluster]')"
 )
+
+
+SCENE_FILE = """
+[projector]
+kind = "parallel"
+azimuth = 30
+elevation = 20
+
+[[object]]
+surface = "sphere"
+params = { r = 1 }
+families = [{ name = "parameter_lines", n1 = 4, n2 = 8 }]
+"""
 
 
 def _loads() -> int:
@@ -40,8 +55,17 @@ def test_frames_on_a_local_cluster_equal_a_serial_run(tmp_path):
             out = lg.animate(scene, views, tmp_path / "d.gif", width=80, progress=False,
                              executor=client.get_executor())  # fmt: skip
             loads = client.run(_loads)
+        # the command line, given the scheduler's address
+        f = tmp_path / "scene.toml"
+        f.write_text(SCENE_FILE, encoding="utf-8")
+        gif = tmp_path / "cli.gif"
+        argv = ["animate", str(f), "-o", str(gif), "--frames", "3", "--width", "64",
+                "--scheduler", cluster.scheduler_address]  # fmt: skip
+        assert cli_main(argv) == 0
     finally:
         cluster.close(timeout=30)
+    with Image.open(gif) as im:
+        assert im.n_frames == 3 and im.size[0] == 64
     assert out.read_bytes() == serial.read_bytes()
     assert len(loads) == 2
     assert sorted(loads.values()) == [1, 1]  # the scene reached each worker exactly once
