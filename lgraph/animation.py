@@ -66,7 +66,8 @@ _WINDOW_GRID = 41
 # -- the frame window -----------------------------------------------------------
 def _scene_points(scene: Any) -> np.ndarray:
     """World points spread over every node: a parameter grid on each surface's
-    drawn patch, samples along each free curve."""
+    drawn patch, samples along each free curve, the anchors of labels and
+    point marks."""
     pts = []
     for node in scene.nodes:
         if node.surface is not None:
@@ -83,6 +84,8 @@ def _scene_points(scene: Any) -> np.ndarray:
             t = b.t0[idx] + s * (b.t1[idx] - b.t0[idx])
             p = np.asarray(b.evaluate(idx, t)[0], float).reshape(-1, 3)
         pts.append(node.transform.apply(p))
+    marks = [np.asarray(m.at, float).reshape(1, 3) for m in (*scene.labels, *scene.points)]
+    pts.extend(marks)  # label anchors and point marks (in world coordinates already)
     if not pts:
         return np.zeros((1, 3))
     allp = np.concatenate(pts)
@@ -139,7 +142,13 @@ class _Job:
         encode, when ``portable``, i.e. sent back from another process), the
         frame file's bytes (SVG, PDF) or a slim drawing (PDF pages)."""
         d = self.scene.render(view, **self.render_options)
-        d = Drawing(strokes=d.strokes, page=self.page, background=d.background, window=self.window)
+        d = Drawing(
+            strokes=d.strokes,
+            page=self.page,
+            background=d.background,
+            labels=d.labels,
+            window=self.window,
+        )
         if self.kind == "drawing":  # only what a page needs: no xyz, uv, surface
             slim = tuple(
                 Stroke(s.xy, np.empty((0, 3)), visible=s.visible, family=s.family, style=s.style)

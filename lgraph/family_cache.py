@@ -9,23 +9,28 @@ redone per view.
 
 Safety:
 
-* The key is the :class:`~lgraph.Node` object itself (held weakly: a node
-  that is garbage-collected drops its entries), the family's position in the
-  node and the family object.  Nodes, surfaces and families are immutable, so
-  an entry can never go stale: a changed scene consists of new nodes (or has
-  new ones added), which miss the cache and are computed afresh.
+* What a family draws depends only on the family and the surface (curves are
+  in the node's local frame; its transform and style are applied later).  The
+  key is the surface object itself (by identity; the entry holds the
+  surface, so the identity cannot pass to another object while the entry
+  lives) and the family (by value for the frozen families of lgraph, else by
+  identity).  Surfaces and families are
+  immutable, so an entry can never go stale: a changed scene holds new
+  surfaces or families, which miss the cache and are computed afresh.  The
+  same surface in several nodes (or groups) shares its entries.
 * Families that depend on the view (the contour; any family whose class sets
   ``view_dependent = True``, the default for families outside lgraph) are
   never cached.
 * The cache lives in the process: it is not pickled with a scene, and each
   worker process of a parallel animation fills its own.
 
-Memory: at most :data:`MAX_ENTRIES` family results are kept, least recently used
-evicted first.  One entry holds the curves of one family on one node: for
-closed forms a few closures, for numeric lines of curvature the integrator's
-dense output (typically well under 10 MB for a figure's 30 lines), so the
-cache stays bounded by ``MAX_ENTRIES`` times that.  :func:`clear` empties it;
-:func:`set_max_entries` changes the bound (0 turns caching off).
+Memory: at most :data:`MAX_ENTRIES` family results are kept, least recently
+used evicted first (an entry keeps its surface alive until then).  One entry
+holds the curves of one family on one surface: for closed forms a few
+closures and parameters, for numeric lines the integrator's dense output
+(0.5 MB for the 28 lines of curvature of the gallery's monkey saddle), so
+the cache stays bounded by ``MAX_ENTRIES`` times that.  :func:`clear`
+empties it; :func:`set_max_entries` changes the bound (0 turns caching off).
 
 >>> import lgraph as lg
 >>> is_view_dependent(lg.LinesOfCurvature(4, 4)), is_view_dependent(lg.Contour())
@@ -35,7 +40,6 @@ cache stays bounded by ``MAX_ENTRIES`` times that.  :func:`clear` empties it;
 from __future__ import annotations
 
 import threading
-import weakref
 from collections import OrderedDict
 from typing import TYPE_CHECKING, Any
 
@@ -55,12 +59,12 @@ __all__ = [
 ]
 
 #: Default bound on the number of cached family results (see the module docs).
-MAX_ENTRIES = 256
+MAX_ENTRIES = 64
 
 _lock = threading.RLock()
 _max_entries = MAX_ENTRIES
-# LRU order over (weakref to node, index, family key) -> list of batches
-_entries: OrderedDict[tuple[Any, int, Any], list] = OrderedDict()
+# LRU order over (id of the surface, family key) -> (surface, list of batches)
+_entries: OrderedDict[tuple[int, Any], tuple[Any, list]] = OrderedDict()
 _stats = {"hits": 0, "misses": 0}
 
 
@@ -72,24 +76,6 @@ def _family_key(family: Family) -> Any:
     return family
 
 
-def _forget(ref: weakref.ref) -> None:
-    """Called when a node is garbage-collected: drop its entries."""
-    with _lock:
-        for key in [k for k in _entries if k[0] is ref]:
-            del _entries[key]
-
-
-_refs: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-
-
-def _node_ref(node: Node) -> weakref.ref:
-    ref = _refs.get(node)
-    if ref is None:
-        ref = weakref.ref(node, _forget)
-        _refs[node] = ref
-    return ref
-
-
 def is_view_dependent(family: Family) -> bool:
     """Whether ``family``'s curves change with the projector (then never cached)."""
     return bool(getattr(family, "view_dependent", True))
@@ -98,26 +84,29 @@ def is_view_dependent(family: Family) -> bool:
 def family_batches(
     node: Node, index: int, family: Family, projector: Projector | None
 ) -> list[CurveBatch]:
-    """``family.batches(node.surface, projector)``, computed once per node and
-    family when the family does not depend on the view.
+    """``family.batches(node.surface, projector)``, computed once per surface
+    and family when the family does not depend on the view (``index``, the
+    family's position in the node, is not part of the key).
 
     ``projector`` is the node's local projector; view-dependent families get
     it on every call.  The returned list must not be modified.
     """
     if _max_entries <= 0 or is_view_dependent(family):
         return family.batches(node.surface, projector)
+    surface = node.surface
     with _lock:
-        key = (_node_ref(node), index, _family_key(family))
+        key = (id(surface), _family_key(family))
         found = _entries.get(key)
         if found is not None:
             _entries.move_to_end(key)
             _stats["hits"] += 1
-            return found
+            return found[1]
         _stats["misses"] += 1
     # computed outside the lock: other threads may render other scenes meanwhile
-    result = list(family.batches(node.surface, projector))
+    result = list(family.batches(surface, projector))
     with _lock:
-        _entries[key] = result
+        # the entry holds its surface: its id cannot be reused while the entry lives
+        _entries[key] = (surface, result)
         _entries.move_to_end(key)
         while len(_entries) > _max_entries:
             _entries.popitem(last=False)

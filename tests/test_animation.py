@@ -46,7 +46,7 @@ def _reference(scene, views, width=WIDTH, hidden_lines=False) -> list[np.ndarray
     out = []
     for v in views:
         d = scene.render(v, hidden_lines=hidden_lines)
-        d = lg.Drawing(d.strokes, page=page, window=window)
+        d = lg.Drawing(d.strokes, page=page, window=window, labels=d.labels)
         buf = io.BytesIO()
         d.save(buf, format="png", size=(width, h))
         out.append(np.asarray(Image.open(io.BytesIO(buf.getvalue())).convert("RGB"), dtype=int))
@@ -298,3 +298,25 @@ def test_cli_scheduler_without_dask_is_a_clear_error(tmp_path, capsys, monkeypat
     assert cli_main(argv) == 2
     assert "lgraph[cluster]" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == [f]
+
+
+def test_labels_travel_with_the_frames(tmp_path):
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(4, 8))
+    scene.add(lg.Label("N", at=(0, 0, 1.6)))
+    views = lg.orbit(elevation=20, frames=3)
+    frames = _frames(lg.animate(scene, views, tmp_path / "t.png", width=WIDTH, progress=False))
+    want = _reference(scene, views)
+    assert all(np.array_equal(g, w) for g, w in zip(frames, want))
+    # the label is drawn: the same frame without it differs
+    window = animation.frame_window(scene, views)
+    assert window[3] > 1.6 * np.cos(np.radians(20))  # the label's anchor is in the window
+    d = scene.render(views[0])
+    assert len(d.labels) == 1
+    h, w = frames[0].shape[:2]
+    bare = lg.Drawing(d.strokes, page=lg.Page(width=float(w), height=float(h), margin=0.03 * w),
+                      window=window)  # fmt: skip
+    buf = io.BytesIO()
+    bare.save(buf, format="png", size=(w, h))
+    no_label = np.asarray(Image.open(io.BytesIO(buf.getvalue())).convert("RGB"), dtype=int)
+    assert not np.array_equal(no_label, frames[0])

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import gc
-
 import attrs
 import numpy as np
 import pytest
@@ -130,7 +128,7 @@ def test_a_changed_scene_is_recomputed():
     )
 
 
-def test_memory_is_bounded_and_dead_nodes_are_dropped():
+def test_memory_is_bounded():
     family_cache.set_max_entries(2)
     scene = lg.Scene()
     for k in range(5):
@@ -140,8 +138,23 @@ def test_memory_is_bounded_and_dead_nodes_are_dropped():
     family_cache.set_max_entries(10)
     scene.render(VIEWS[0])
     assert family_cache.info()["entries"] == 5
-    del scene
-    gc.collect()
+    family_cache.set_max_entries(3)  # lowering the bound evicts at once
+    assert family_cache.info()["entries"] == 3
+    family_cache.clear()
     assert family_cache.info()["entries"] == 0
     with pytest.raises(ValueError, match="non-negative integer"):
         family_cache.set_max_entries(1.5)
+
+
+def test_groups_share_the_cache_and_equal_uncached_renders():
+    inner = lg.Scene()
+    inner.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(4, 5))
+    outer = lg.Scene()
+    outer.add(inner, transform=lg.translate(0, 0, 1) @ lg.rotate("z", 30))
+    outer.add(inner, transform=lg.translate(7, 0, 0))  # the same surface twice
+    cached = [outer.render(v) for v in VIEWS]
+    info = family_cache.info()
+    assert info["misses"] == 1 and info["hits"] == 2 * len(VIEWS) - 1
+    family_cache.set_max_entries(0)
+    for v, d in zip(VIEWS, cached):
+        _same(d, outer.render(v))
