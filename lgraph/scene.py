@@ -296,7 +296,7 @@ class Scene:
         return scene_drawing(self)._repr_png_()
 
     def __repr__(self) -> str:
-        return f"<Scene: {len(self._nodes)} nodes>"
+        return f"<Scene: {len(self.nodes)} nodes>"
 
     def render(
         self,
