@@ -308,7 +308,14 @@ def _frames(
         ), None
     # any other executor: chunks of frames, each with the pickled job; a worker
     # unpickles a job once and keeps it for the following chunks
-    data, token = _dumps(job), uuid.uuid4().hex
+    try:
+        data = _dumps(job)
+    except Exception as e:  # noqa: BLE001 - e.g. a lambda without cloudpickle
+        raise TypeError(
+            f"animate: the scene cannot be sent to the executor's workers ({e}); install "
+            "cloudpickle, or use a ThreadPoolExecutor or executor=None"
+        ) from e
+    token = uuid.uuid4().hex
     chunk = max(1, min(16, math.ceil(n / (4 * k))))
     chunks = [views[i : i + chunk] for i in range(0, n, chunk)]
     results = _ordered(lambda c: executor.submit(_render_chunk, token, data, c), chunks, 2 * k)

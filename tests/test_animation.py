@@ -320,3 +320,20 @@ def test_labels_travel_with_the_frames(tmp_path):
     bare.save(buf, format="png", size=(w, h))
     no_label = np.asarray(Image.open(io.BytesIO(buf.getvalue())).convert("RGB"), dtype=int)
     assert not np.array_equal(no_label, frames[0])
+
+
+def test_a_scene_that_cannot_be_pickled(scene, tmp_path, monkeypatch):
+    def fail(obj):
+        raise TypeError("cannot pickle 'function' object")
+
+    monkeypatch.setattr(animation, "_dumps", fail)
+    views = lg.orbit(frames=3)
+    # the default pool falls back to this process, with a warning
+    with pytest.warns(RuntimeWarning, match="rendering the frames in this process"):
+        p = lg.animate(scene, views, tmp_path / "a.png", width=WIDTH, progress=False, workers=2)
+    assert len(_frames(p)) == 3
+    # a process pool given explicitly: a clear error, no file
+    with cf.ProcessPoolExecutor(1) as ex, pytest.raises(TypeError, match="install cloudpickle"):
+        lg.animate(scene, views, tmp_path / "b.png", width=WIDTH, progress=False, executor=ex)
+    assert not (tmp_path / "b.png").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.png"]
