@@ -29,7 +29,7 @@ def drawing() -> lg.Drawing:
 def _polylines(svg_text: str) -> list:
     root = ET.fromstring(svg_text.encode("utf-8"))
     assert root.tag == SVG + "svg"
-    return root.findall(SVG + "polyline")
+    return list(root.iter(SVG + "polyline"))  # inside layer groups
 
 
 def test_repr_svg_is_valid_svg_with_every_stroke(drawing):
