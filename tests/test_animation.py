@@ -281,7 +281,7 @@ def test_cli_animate(tmp_path, capsys):
 def test_cli_animate_errors(tmp_path, capsys):
     f = tmp_path / "scene.toml"
     f.write_text(SCENE_FILE, encoding="utf-8")
-    assert cli_main(["animate", str(f), "-o", str(tmp_path / "t.avi"), "--frames", "2"]) == 1
+    assert cli_main(["animate", str(f), "-o", str(tmp_path / "t.avi"), "--frames", "2"]) == 2
     assert "unknown suffix '.avi'" in capsys.readouterr().err
     assert cli_main(["animate", str(tmp_path / "missing.toml")]) == 2
     with pytest.raises(SystemExit) as e:

@@ -47,11 +47,11 @@ def test_frames_on_a_local_cluster_equal_a_serial_run(tmp_path):
         threads_per_worker=1,
         processes=True,
         dashboard_address=None,
-        death_timeout=30,
+        death_timeout=60,
     )
     try:
-        with distributed.Client(cluster, timeout=30) as client:
-            client.wait_for_workers(2, timeout=30)
+        with distributed.Client(cluster, timeout=60) as client:
+            client.wait_for_workers(2, timeout=60)
             out = lg.animate(scene, views, tmp_path / "d.gif", width=80, progress=False,
                              executor=client.get_executor())  # fmt: skip
             loads = client.run(_loads)
