@@ -1,6 +1,6 @@
-"""Animations and many frames: :func:`animate` renders a scene from many views.
+"""Animations and many frames: :func:`lgraph.animate` renders a scene from many views.
 
-Frames go straight to a streaming writer (:mod:`lgraph.frame_writers`): an
+Frames go straight to a streaming writer (``lgraph.frame_writers``): an
 animated GIF, APNG or WebP, a multi-page PDF, or a folder of numbered
 PNG/SVG/PDF frames, chosen by the path's suffix.  Every frame shows the same
 window of the projection plane (the union, over all views, of the scene's
@@ -380,7 +380,7 @@ def animate(
         ``client.get_executor()`` (the scene is scattered to each worker once).
         None: in this process, or in a local process pool of ``workers``
         processes (default: the CPU count when there are at least
-        :data:`PARALLEL_MIN_FRAMES` frames).
+        :data:`~lgraph.animation.PARALLEL_MIN_FRAMES` frames).
     workers : int, optional
         Size of the local pool when ``executor`` is None (1: this process).
     progress : bool

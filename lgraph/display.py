@@ -1,12 +1,12 @@
 """Drawings in notebooks and other programs: file objects, inline reprs, matplotlib.
 
-* :func:`save_to_fileobj` -- ``drawing.save(fileobj, format="pdf")`` for any
+* :func:`~lgraph.display.save_to_fileobj` -- ``drawing.save(fileobj, format="pdf")`` for any
   binary file object (``io.BytesIO``, a socket's file, an open file);
-* :func:`to_bytes` -- the bytes of a drawing in any backend's format
+* :func:`~lgraph.display.to_bytes` -- the bytes of a drawing in any backend's format
   (what ``_repr_png_`` and ``to_svg`` use);
-* :func:`plot` -- the strokes as matplotlib line collections
+* :func:`~lgraph.display.plot` -- the strokes as matplotlib line collections
   (``drawing.plot(ax)``); matplotlib is optional and imported only here;
-* :func:`scene_drawing` -- the drawing a :class:`~lgraph.Scene` shows of
+* :func:`~lgraph.display.scene_drawing` -- the drawing a :class:`~lgraph.Scene` shows of
   itself in a notebook (:data:`DEFAULT_VIEW`).
 
 IPython finds ``_repr_svg_`` and ``_repr_png_`` on :class:`~lgraph.Drawing`
