@@ -63,16 +63,16 @@ MAX_ENTRIES = 64
 
 _lock = threading.RLock()
 _max_entries = MAX_ENTRIES
-# LRU order over (id of the surface, family key) -> (surface, list of batches)
-_entries: OrderedDict[tuple[int, Any], tuple[Any, list]] = OrderedDict()
+# LRU order over (id of the surface, family key) -> (surface, family, list of batches)
+_entries: OrderedDict[tuple[int, Any], tuple[Any, Any, list]] = OrderedDict()
 _stats = {"hits": 0, "misses": 0}
 
 
 def _family_key(family: Family) -> Any:
     try:
         hash(family)
-    except TypeError:  # an unhashable family: identity is still safe
-        return ("id", id(family), family)
+    except TypeError:  # an unhashable family: its identity (the entry holds it)
+        return ("id", id(family))
     return family
 
 
@@ -100,13 +100,14 @@ def family_batches(
         if found is not None:
             _entries.move_to_end(key)
             _stats["hits"] += 1
-            return found[1]
+            return found[2]
         _stats["misses"] += 1
     # computed outside the lock: other threads may render other scenes meanwhile
     result = list(family.batches(surface, projector))
     with _lock:
-        # the entry holds its surface: its id cannot be reused while the entry lives
-        _entries[key] = (surface, result)
+        # the entry holds its surface and family: their ids cannot be reused
+        # while the entry lives
+        _entries[key] = (surface, family, result)
         _entries.move_to_end(key)
         while len(_entries) > _max_entries:
             _entries.popitem(last=False)

@@ -26,7 +26,7 @@ ValueError: LevelLines: values must be a non-empty list of finite numbers, got [
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import attrs
 import numpy as np
@@ -142,6 +142,8 @@ class LevelLines(Family):
     ...
     ValueError: LevelLines: direction must be a non-zero vector, got (0, 0, 0)
     """
+
+    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.family_cache)
 
     n: int = attrs.field(default=9, validator=count("LevelLines"))
     direction: np.ndarray = attrs.field(

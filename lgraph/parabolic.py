@@ -26,7 +26,7 @@ level set ``K = 0`` is traced numerically (:func:`lgraph.level_lines.level_batch
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import attrs
 import numpy as np
@@ -61,6 +61,8 @@ class ParabolicLines(Family):
     closed form for the torus, the Dupin cyclide and surfaces of revolution,
     numeric (level set of ``K`` on a ``grid x grid`` parameter grid, refined by
     Newton's method) otherwise."""
+
+    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.family_cache)
 
     grid: int = attrs.field(default=193, validator=count("ParabolicLines", 9, 4097))
 

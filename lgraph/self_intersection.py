@@ -39,7 +39,7 @@ Klein bottle.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import attrs
 import numpy as np
@@ -377,6 +377,8 @@ class SelfIntersection(Family):
     Numeric for every surface (see the module docstring); the stroke's ``uv``
     are one of the two parameter pairs of each point.
     """
+
+    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.family_cache)
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
         pts = self_intersection_points(surface)

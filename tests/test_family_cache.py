@@ -158,3 +158,32 @@ def test_groups_share_the_cache_and_equal_uncached_renders():
     family_cache.set_max_entries(0)
     for v, d in zip(VIEWS, cached):
         _same(d, outer.render(v))
+
+
+@attrs.frozen
+class Unhashable(Family):
+    """A family with a list field: attrs cannot hash it."""
+
+    values: list = attrs.field(factory=lambda: [3, 3])
+    view_dependent = False
+
+    def batches(self, surface, projector):
+        return lg.ParameterLines(*self.values).batches(surface, projector)
+
+
+def test_unhashable_families_are_cached_by_identity():
+    fam = Unhashable()
+    with pytest.raises(TypeError):
+        hash(fam)
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), fam)
+    a = scene.render(VIEWS[0])
+    scene.render(VIEWS[1])
+    assert family_cache.info()["hits"] == 1
+    family_cache.set_max_entries(0)
+    _same(a, scene.render(VIEWS[0]))
+
+
+def test_new_view_independent_families_are_cached():
+    for fam in (lg.LevelLines(5), lg.ParabolicLines(), lg.SelfIntersection()):
+        assert not family_cache.is_view_dependent(fam), fam
