@@ -11,7 +11,7 @@ its value and the limit.  The limits themselves live in
 >>> check_frames("animate", 10**6)
 Traceback (most recent call last):
 ...
-ValueError: animate: frames must be an integer from 1 to 3600, got 1000000
+ValueError: animate: frames must be an integer from 1 to 100000, got 1000000
 """
 
 from __future__ import annotations

@@ -144,4 +144,4 @@ MAX_INTERSECTION_GRID = 1000
 #: Most marching steps of one intersection curve (the step's lower limit).
 MAX_MARCH_STEPS = 200_000
 #: Most frames of an animation or orbit.
-MAX_FRAMES = 3600
+MAX_FRAMES = 100_000

@@ -47,6 +47,7 @@ from typing import Any, TextIO
 import attrs
 import numpy as np
 
+from ._budget import check_frames
 from .drawing import Drawing, Page, Stroke
 from .frame_writers import writer_for
 from .projectors import Projector
@@ -333,6 +334,7 @@ def _check_views(views: Any) -> list[Projector]:
         ) from None
     if not views:
         raise ValueError("animate: views is empty; give at least one projector")
+    check_frames("animate", len(views))  # the budget of frames (MAX_FRAMES)
     for k, v in enumerate(views):
         if not isinstance(v, Projector):
             raise TypeError(f"animate: views[{k}] must be a Projector, got {type(v).__name__}")

@@ -18,6 +18,7 @@ from typing import Any
 import attrs
 import numpy as np
 
+from ._budget import check_frames
 from ._validate import as_number, vector3
 from .geometry.vectors import cross3
 
@@ -237,8 +238,7 @@ def orbit(
     ...
     ValueError: orbit: frames must be an integer from 1 to 100000, got 0
     """
-    if isinstance(frames, bool) or not isinstance(frames, int) or not 1 <= frames <= 100000:
-        raise ValueError(f"orbit: frames must be an integer from 1 to 100000, got {frames!r}")
+    frames = check_frames("orbit", frames)
     for name, v in (("azimuth", azimuth), ("turn", turn)):
         if isinstance(v, bool) or not (isinstance(v, (int, float)) and math.isfinite(v)):
             raise ValueError(f"orbit: {name} must be a finite number of degrees, got {v!r}")

@@ -349,3 +349,20 @@ def test_the_limits_page_lists_every_budget_with_its_value() -> None:
     for name, value in values.items():
         assert f"``{name}" in page, name
         assert value in page, (name, value)
+
+
+def test_frame_counts_are_budgeted_before_rendering(tmp_path, monkeypatch) -> None:
+    """orbit and animate refuse more frames than MAX_FRAMES, naming the
+    parameter and the limit, before anything is rendered or written."""
+    import lgraph._tolerance as tol
+
+    monkeypatch.setattr(tol, "MAX_FRAMES", 3)
+    with pytest.raises(ValueError, match=r"orbit: frames must be an integer from 1 to 3"):
+        lg.orbit(frames=4)
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1))
+    views = [lg.ParallelProjector.from_angles(10 * k, 20) for k in range(4)]
+    with pytest.raises(ValueError, match=r"animate: frames must be an integer from 1 to 3"):
+        lg.animate(scene, views, tmp_path / "turn.gif", progress=False)
+    assert not list(tmp_path.iterdir())
+    assert len(lg.orbit(frames=3)) == 3
