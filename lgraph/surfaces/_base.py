@@ -9,6 +9,7 @@ analytic answers overrides them.
 
 from __future__ import annotations
 
+import functools
 from typing import TYPE_CHECKING, Any
 
 import attrs
@@ -136,7 +137,40 @@ class Surface:
     Subclasses are frozen attrs classes that define :attr:`!domain` and
     :meth:`!point`; everything else has a default.  Vectorized methods take
     broadcastable arrays ``u1, u2`` and return arrays of shape ``(..., 3)``.
+
+    Parameters that are not numbers are reported by name, whatever the class:
+
+    >>> import lgraph as lg
+    >>> lg.Sphere(1).point("north", 0.0)
+    Traceback (most recent call last):
+    ...
+    TypeError: Sphere.point: u1 must be a number or an array of numbers, got str
     """
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        impl = cls.__dict__.get("point")
+        if impl is None or getattr(impl, "_checked", False):
+            return
+
+        @functools.wraps(impl)
+        def point(self: Surface, u1: Any, u2: Any) -> np.ndarray:
+            try:
+                return impl(self, u1, u2)
+            except (TypeError, ValueError):
+                # only on failure: name a parameter that is not numeric
+                for name, value in (("u1", u1), ("u2", u2)):
+                    try:
+                        np.asarray(value, dtype=float)
+                    except (TypeError, ValueError):
+                        raise TypeError(
+                            f"{type(self).__name__}.point: {name} must be a number or an array "
+                            f"of numbers, got {type(value).__name__}"
+                        ) from None
+                raise
+
+        point._checked = True  # type: ignore[attr-defined]
+        cls.point = point  # type: ignore[method-assign]
 
     #: Cost of ``hits``: per ray, and fixed per call, in units of one grouped
     #: quadric test (about 0.3 us here).  The renderer uses them to choose how
