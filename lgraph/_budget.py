@@ -48,9 +48,9 @@ def _int(owner: str, name: str, value: Any, lo: int, hi: int) -> int:
 
 def check_surface(owner: str, name: str, value: Any) -> Any:
     """``value`` must be a :class:`~lgraph.surfaces._base.Surface` (TypeError otherwise)."""
-    from .surfaces._base import Surface
-
-    if not isinstance(value, Surface):
+    # duck-typed (point and domain): importing Surface would make the surfaces,
+    # which use these budgets, and this module import each other
+    if not (callable(getattr(value, "point", None)) and hasattr(value, "domain")):
         raise TypeError(f"{owner}: {name} must be a Surface, got {type(value).__name__}")
     return value
 

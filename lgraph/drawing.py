@@ -29,90 +29,9 @@ import attrs
 import numpy as np
 
 from ._validate import finite_positive, nonnegative_finite
+from .style import ANCHORS, HIDDEN_STYLE, OUTLINE, Style, _color, _dash  # noqa: F401 - re-exported
 
 __all__ = ["Style", "Stroke", "PlacedLabel", "Page", "Drawing", "HIDDEN_STYLE"]
-
-
-def _color(value: Any) -> tuple[float, float, float]:
-    """Convert a colour to an RGB triple in [0, 1].
-
-    Accepts ``(r, g, b)`` floats in [0, 1], ``"#rrggbb"`` or a few names.
-    """
-    names = {
-        "black": (0.0, 0.0, 0.0),
-        "white": (1.0, 1.0, 1.0),
-        "red": (0.8, 0.0, 0.0),
-        "green": (0.0, 0.5, 0.0),
-        "blue": (0.0, 0.2, 0.8),
-        "gray": (0.5, 0.5, 0.5),
-        "grey": (0.5, 0.5, 0.5),
-    }
-    if isinstance(value, str):
-        v = value.strip().lower()
-        if v in names:
-            return names[v]
-        if v.startswith("#") and len(v) == 7:
-            try:
-                return tuple(int(v[i : i + 2], 16) / 255.0 for i in (1, 3, 5))  # type: ignore[return-value]
-            except ValueError:
-                pass
-        raise ValueError(
-            f"Style: color must be '#rrggbb', one of {sorted(names)} or an (r, g, b) "
-            f"triple in [0, 1], got {value!r}"
-        )
-    try:
-        rgb = tuple(float(c) for c in value)
-    except TypeError:
-        raise ValueError(
-            f"Style: color must be '#rrggbb' or an (r, g, b) triple in [0, 1], got {value!r}"
-        ) from None
-    if len(rgb) != 3 or not all(0.0 <= c <= 1.0 for c in rgb):
-        raise ValueError(f"Style: color must be an (r, g, b) triple in [0, 1], got {value!r}")
-    return rgb  # type: ignore[return-value]
-
-
-def _dash(value: Any) -> tuple[float, ...] | None:
-    if value is None:
-        return None
-    try:
-        d = tuple(float(x) for x in value)
-    except TypeError:
-        raise ValueError(
-            f"Style: dash must be None or a sequence of on/off lengths in pt, got {value!r}"
-        ) from None
-    if not d or len(d) % 2 or not all(math.isfinite(x) and x > 0 for x in d):
-        raise ValueError(
-            "Style: dash must be an even-length sequence of positive finite lengths in pt, "
-            f"got {value!r}"
-        )
-    return d
-
-
-@attrs.frozen
-class Style:
-    """How a stroke looks: colour, line width (pt) and dash pattern (pt).
-
-    >>> Style(width=1.0).width
-    1.0
-    >>> Style(color="#ff0000").color
-    (1.0, 0.0, 0.0)
-    >>> Style(width=0)
-    Traceback (most recent call last):
-    ...
-    ValueError: Style: width must be a positive finite number, got 0
-    """
-
-    color: tuple[float, float, float] = attrs.field(default=(0.0, 0.0, 0.0), converter=_color)
-    width: float = attrs.field(default=0.5, validator=finite_positive("Style"))
-    dash: tuple[float, ...] | None = attrs.field(default=None, converter=_dash)
-
-    def evolve(self, **changes: Any) -> Style:
-        """A copy with some fields changed."""
-        return attrs.evolve(self, **changes)
-
-
-#: Default look of hidden parts (``hidden_lines=True``): thin and dashed.
-HIDDEN_STYLE = Style(color=(0.35, 0.35, 0.35), width=0.3, dash=(2.0, 1.5))
 
 
 def _array_or_none(value: Any) -> np.ndarray | None:
@@ -198,8 +117,6 @@ class PlacedLabel:
     def origin(self) -> tuple[float, float]:
         """Where the text's baseline starts, relative to the anchor's page position (pt)."""
         from ._text import text_shape
-        from .objects import ANCHORS
-
         bx0, by0, bx1, by1 = text_shape(self.text, self.size).box
         pad = LABEL_PAD * self.size
         fx, fy = ANCHORS[self.anchor]

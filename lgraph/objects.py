@@ -34,25 +34,9 @@ import attrs
 import numpy as np
 
 from ._text import check_text
-from .drawing import Style, _color
+from .style import ANCHORS, Style, _color
 
 __all__ = ["Label", "Point", "ANCHORS"]
-
-#: anchor name -> the point of the text box put at the label's position, as
-#: fractions (0 left/bottom, 1 right/top) of the box: TikZ's convention, so
-#: ``anchor="sw"`` puts the text above and to the right of the point
-ANCHORS: dict[str, tuple[float, float]] = {
-    "center": (0.5, 0.5),
-    "n": (0.5, 1.0),
-    "ne": (1.0, 1.0),
-    "e": (1.0, 0.5),
-    "se": (1.0, 0.0),
-    "s": (0.5, 0.0),
-    "sw": (0.0, 0.0),
-    "w": (0.0, 0.5),
-    "nw": (0.0, 1.0),
-}
-
 
 def _name(label: Any) -> str:
     text = getattr(label, "text", None)

@@ -24,10 +24,11 @@ import attrs
 
 from ._tolerance import CHORD_TOLERANCE
 from .curves import Curve, CurveOnSurface
-from .drawing import Drawing, Page, Style
+from .drawing import Drawing, Page
 from .families import FAMILIES, Contour, Family
 from .family_cache import family_batches
 from .geometry.transforms import IDENTITY, Transform
+from .style import OUTLINE, Style
 from .surfaces._base import Surface
 
 if TYPE_CHECKING:
@@ -36,7 +37,6 @@ if TYPE_CHECKING:
 __all__ = ["Scene", "Node", "Group"]
 
 #: families drawn as the outline (wider by default): the contour and the patch edges
-_OUTLINE = ("contour", "boundary")
 
 
 def _transform(value: Any) -> Transform:
@@ -91,11 +91,11 @@ class Node:
     def style_for(self, family: str) -> Style:
         s = self.style
         if isinstance(s, Style):
-            return s.evolve(width=s.width * 1.6) if family in _OUTLINE else s
+            return s.evolve(width=s.width * 1.6) if family in OUTLINE else s
         if family in s:
             return s[family]
         base = s.get("default", Style())
-        return base.evolve(width=base.width * 1.6) if family in _OUTLINE else base
+        return base.evolve(width=base.width * 1.6) if family in OUTLINE else base
 
 
 @attrs.frozen(eq=False)

@@ -31,7 +31,7 @@ from ._validate import as_number
 from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
 from .geometry.transforms import Transform
 from .projectors import CentralProjector, ParallelProjector, Projector
-from .scene import _OUTLINE
+from .style import OUTLINE
 
 if TYPE_CHECKING:
     from .scene import Node, Scene
@@ -291,7 +291,7 @@ def _warn_unused_styles(s: Samples, nodes: tuple[Node, ...]) -> None:
         drawn.setdefault(node, set()).update([batch.family] if names is None else set(names))
     for k, node in enumerate(nodes):
         if isinstance(node.style, dict):
-            unused = sorted(set(node.style) - drawn.get(k, set()) - {"default", *_OUTLINE})
+            unused = sorted(set(node.style) - drawn.get(k, set()) - {"default", *OUTLINE})
             if unused:
                 warnings.warn(
                     f"Scene.render: node {k} ({node.item!r}) has styles for {unused}, which it "

@@ -58,7 +58,7 @@ def background_rgb(drawing: Any) -> tuple[float, float, float] | None:
     bg = getattr(drawing, "background", None)
     if bg is None:
         return None
-    from ..drawing import _color
+    from ..style import _color
 
     return _color(bg)
 

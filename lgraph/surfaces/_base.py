@@ -231,6 +231,8 @@ class Surface:
         w = np.array(_W1)
         return np.tensordot(w, p[:4], axes=1) / h1, np.tensordot(w, p[4:], axes=1) / h2
 
+    derivatives.finite_differences = True  # type: ignore[attr-defined]
+
     def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Second partial derivatives ``x11, x12, x22``.
 

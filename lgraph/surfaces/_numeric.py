@@ -492,9 +492,8 @@ def _candidates(H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray) -
 
 
 def _analytic_derivatives(surface: Surface) -> bool:
-    from ._base import Surface as Base
-
-    if type(surface).derivatives is Base.derivatives:
+    # the base class marks its finite-difference default (no import of _base here)
+    if getattr(type(surface).derivatives, "finite_differences", False):
         return False
     return getattr(surface, "derivatives_func", True) is not None
 

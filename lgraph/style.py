@@ -1,0 +1,121 @@
+"""How drawn things look and sit: :class:`Style` (colour, width, dash), the
+default look of hidden parts, and the anchors of text.
+
+Kept apart from the display list (:mod:`lgraph.drawing`) so that scene objects,
+backends and the renderer can use styles without importing each other.
+
+>>> Style(width=1.0).width
+1.0
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import attrs
+
+from ._validate import finite_positive
+
+__all__ = ["Style", "HIDDEN_STYLE", "OUTLINE", "ANCHORS"]
+
+#: Families drawn as a surface's outline (1.6 times as wide as its other lines).
+OUTLINE = ("contour", "boundary")
+
+
+def _color(value: Any) -> tuple[float, float, float]:
+    """Convert a colour to an RGB triple in [0, 1].
+
+    Accepts ``(r, g, b)`` floats in [0, 1], ``"#rrggbb"`` or a few names.
+    """
+    names = {
+        "black": (0.0, 0.0, 0.0),
+        "white": (1.0, 1.0, 1.0),
+        "red": (0.8, 0.0, 0.0),
+        "green": (0.0, 0.5, 0.0),
+        "blue": (0.0, 0.2, 0.8),
+        "gray": (0.5, 0.5, 0.5),
+        "grey": (0.5, 0.5, 0.5),
+    }
+    if isinstance(value, str):
+        v = value.strip().lower()
+        if v in names:
+            return names[v]
+        if v.startswith("#") and len(v) == 7:
+            try:
+                return tuple(int(v[i : i + 2], 16) / 255.0 for i in (1, 3, 5))  # type: ignore[return-value]
+            except ValueError:
+                pass
+        raise ValueError(
+            f"Style: color must be '#rrggbb', one of {sorted(names)} or an (r, g, b) "
+            f"triple in [0, 1], got {value!r}"
+        )
+    try:
+        rgb = tuple(float(c) for c in value)
+    except TypeError:
+        raise ValueError(
+            f"Style: color must be '#rrggbb' or an (r, g, b) triple in [0, 1], got {value!r}"
+        ) from None
+    if len(rgb) != 3 or not all(0.0 <= c <= 1.0 for c in rgb):
+        raise ValueError(f"Style: color must be an (r, g, b) triple in [0, 1], got {value!r}")
+    return rgb  # type: ignore[return-value]
+
+
+def _dash(value: Any) -> tuple[float, ...] | None:
+    if value is None:
+        return None
+    try:
+        d = tuple(float(x) for x in value)
+    except TypeError:
+        raise ValueError(
+            f"Style: dash must be None or a sequence of on/off lengths in pt, got {value!r}"
+        ) from None
+    if not d or len(d) % 2 or not all(math.isfinite(x) and x > 0 for x in d):
+        raise ValueError(
+            "Style: dash must be an even-length sequence of positive finite lengths in pt, "
+            f"got {value!r}"
+        )
+    return d
+
+
+@attrs.frozen
+class Style:
+    """How a stroke looks: colour, line width (pt) and dash pattern (pt).
+
+    >>> Style(width=1.0).width
+    1.0
+    >>> Style(color="#ff0000").color
+    (1.0, 0.0, 0.0)
+    >>> Style(width=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: Style: width must be a positive finite number, got 0
+    """
+
+    color: tuple[float, float, float] = attrs.field(default=(0.0, 0.0, 0.0), converter=_color)
+    width: float = attrs.field(default=0.5, validator=finite_positive("Style"))
+    dash: tuple[float, ...] | None = attrs.field(default=None, converter=_dash)
+
+    def evolve(self, **changes: Any) -> Style:
+        """A copy with some fields changed."""
+        return attrs.evolve(self, **changes)
+
+
+#: Default look of hidden parts (``hidden_lines=True``): thin and dashed.
+HIDDEN_STYLE = Style(color=(0.35, 0.35, 0.35), width=0.3, dash=(2.0, 1.5))
+
+
+#: anchor name -> the point of the text box put at the label's position, as
+#: fractions (0 left/bottom, 1 right/top) of the box: TikZ's convention, so
+#: ``anchor="sw"`` puts the text above and to the right of the point
+ANCHORS: dict[str, tuple[float, float]] = {
+    "center": (0.5, 0.5),
+    "n": (0.5, 1.0),
+    "ne": (1.0, 1.0),
+    "e": (1.0, 0.5),
+    "se": (1.0, 0.0),
+    "s": (0.5, 0.0),
+    "sw": (0.0, 0.0),
+    "w": (0.0, 0.5),
+    "nw": (0.0, 1.0),
+}
