@@ -323,7 +323,7 @@ class Scene:
         hidden_style : Style, optional
             Style of hidden parts (default thin, grey, dashed).
         """
-        from .visibility import render
+        from .render import render
 
         return render(
             self,

@@ -110,7 +110,7 @@ def _no_part_files(folder):
 
 
 def test_render_checks_output_before_rendering(tmp_path, capsys, monkeypatch):
-    import lgraph.visibility as vis
+    import lgraph.render as vis
 
     def boom(*a, **k):
         raise AssertionError("rendered although the output is wrong")
@@ -169,7 +169,7 @@ def test_debug_shows_the_traceback(tmp_path):
 
 
 def test_a_bad_width_is_reported_before_rendering(tmp_path, capsys, monkeypatch):
-    import lgraph.visibility as vis
+    import lgraph.render as vis
 
     def boom(*a, **k):
         raise AssertionError("rendered although --width is wrong")

@@ -1,12 +1,12 @@
-"""Unit tests of the renderer's sampling stage (lgraph._sampling)."""
+"""Unit tests of the renderer's sampling stage (lgraph.render.sampling)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 import lgraph as lg
-from lgraph._sampling import Samples, _predicted_deviation, merge, seg_distance
 from lgraph.geometry.transforms import IDENTITY
+from lgraph.render.sampling import Samples, _predicted_deviation, merge, seg_distance
 
 
 def test_predicted_deviation_of_a_circle_is_its_sagitta() -> None:

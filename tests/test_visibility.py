@@ -207,7 +207,7 @@ def test_closed_form_contour_crossings_match_the_iterative_search(name, monkeypa
     """Parameter lines of ellipsoids cross their own contour where the closed
     form says (no iterations); switching it off, the margin search finds the same
     stroke ends to ~1e-12 of the scene size."""
-    import lgraph._flips as flips
+    import lgraph.render.flips as flips
 
     scene, _, _ = three_ellipsoids()
     p = PROJECTORS[name]

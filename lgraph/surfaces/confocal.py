@@ -211,7 +211,7 @@ class ConfocalQuadric(Quadric):
 
     def contour(self, projector: Any) -> list[CurveBatch]:
         from ..geometry.transforms import Transform
-        from ..visibility import local_projector
+        from ..render import local_projector
 
         if not np.array_equal(self.rotation, np.eye(3)):
             projector = local_projector(projector, Transform(self.rotation))

@@ -6,15 +6,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import _tolerance as tol
-from .projectors import CentralProjector, Projector
-from .surfaces._base import CONTOUR, OFF
-from .surfaces._quadric_ray import quadric_coefficients_world, quadric_ray_hits
-from .surfaces.quadrics import Quadric
+from .. import _tolerance as tol
+from ..projectors import CentralProjector, Projector
+from ..surfaces._base import CONTOUR, OFF
+from ..surfaces._quadric_ray import quadric_coefficients_world, quadric_ray_hits
+from ..surfaces.quadrics import Quadric
 
 if TYPE_CHECKING:
-    from .scene import Node
-    from .surfaces._base import Surface
+    from ..scene import Node
+    from ..surfaces._base import Surface
 
 __all__ = ["Occlusion"]
 

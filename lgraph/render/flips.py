@@ -15,11 +15,11 @@ from __future__ import annotations
 import attrs
 import numpy as np
 
-from . import _tolerance as tol
-from ._occlusion import Occlusion
-from ._sampling import Samples, merge
-from .projectors import CentralProjector, Projector
-from .surfaces._base import ON
+from .. import _tolerance as tol
+from ..projectors import CentralProjector, Projector
+from ..surfaces._base import ON
+from .occlusion import Occlusion
+from .sampling import Samples, merge
 
 __all__ = ["locate_flips", "seed_crossings"]
 
@@ -159,7 +159,7 @@ def _contour_crossings(
     """Where exact ellipses ``x = c + p cos t + r sin t`` (rows of ``e``)
     cross the contour of the ellipsoids ``x.A x + bq.x + d = 0`` they lie on
     (coefficients in coordinates centred on ``centre``, see
-    :class:`~lgraph._occlusion.Occlusion`): ``(n, 2)`` angles ``t`` (defined
+    :class:`~lgraph.render.occlusion.Occlusion`): ``(n, 2)`` angles ``t`` (defined
     modulo 2 pi; NaN: no crossing).
 
     On its quadric a point is hidden by it exactly when ``(2 A x + bq) . w <

@@ -13,13 +13,13 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from . import _tolerance as tol
-from .geometry.transforms import Transform
-from .projectors import Projector
-from .surfaces._base import OFF
+from .. import _tolerance as tol
+from ..geometry.transforms import Transform
+from ..projectors import Projector
+from ..surfaces._base import OFF
 
 if TYPE_CHECKING:
-    from .curves import CurveBatch
+    from ..curves import CurveBatch
 
 __all__ = ["Part", "Samples", "check_points", "merge", "refine"]
 

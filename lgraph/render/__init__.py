@@ -2,16 +2,18 @@
 
 1. every node's families give curve batches (in the node's local frame);
 2. the initial samples are tested against every surface in the scene
-   (vectorized, with a projected bounding-box cull; :mod:`lgraph._occlusion`),
+   (vectorized, with a projected bounding-box cull; :mod:`lgraph.render.occlusion`),
    and samples are added on both sides of contour crossings that they miss
    (exact ellipses on their own ellipsoid, in closed form);
 3. all curves are sampled adaptively until each chord deviates from the true
    projected curve by at most ``tolerance`` times the figure's diagonal
-   (:mod:`lgraph._sampling`) -- except, without hidden lines, chords on the
+   (:mod:`lgraph.render.sampling`) -- except, without hidden lines, chords on the
    far side of their own ellipsoid -- and the new samples are tested;
 4. where visibility flips between two samples, the flip is located to near
-   machine precision on the curve parameter (:mod:`lgraph._flips`);
-5. runs of equal visibility become strokes.
+   machine precision on the curve parameter (:mod:`lgraph.render.flips`);
+5. runs of equal visibility become strokes;
+6. labels and point marks are placed and hidden like the lines
+   (:mod:`lgraph.render.marks`).
 """
 
 from __future__ import annotations
@@ -23,18 +25,18 @@ from typing import TYPE_CHECKING, Any
 import attrs
 import numpy as np
 
-from . import _tolerance as tol
-from ._flips import locate_flips, seed_crossings
-from ._occlusion import Occlusion, _twins
-from ._sampling import Samples, check_points, refine
-from ._validate import as_number
-from .drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
-from .geometry.transforms import Transform
-from .projectors import CentralProjector, ParallelProjector, Projector
-from .style import OUTLINE
+from .. import _tolerance as tol
+from .._validate import as_number
+from ..drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
+from ..geometry.transforms import Transform
+from ..projectors import CentralProjector, ParallelProjector, Projector
+from ..style import OUTLINE
+from .flips import locate_flips, seed_crossings
+from .occlusion import Occlusion, _twins
+from .sampling import Samples, check_points, refine
 
 if TYPE_CHECKING:
-    from .scene import Node, Scene
+    from ..scene import Node, Scene
 
 __all__ = ["render", "local_projector"]
 
@@ -141,7 +143,7 @@ def _self_hidden(s: Samples, vis: Occlusion) -> np.ndarray | None:
     When hidden lines are not drawn, a chord between two of them is not
     refined.  A visible piece inside such a chord would have to cross the
     contour twice within it; for exact ellipses (parameter lines of
-    ellipsoids) :func:`~lgraph._flips.seed_crossings` has put samples at
+    ellipsoids) :func:`~lgraph.render.flips.seed_crossings` has put samples at
     both crossings already; other curves could, in principle, hide such a
     near-tangency shorter than the chord.  Chords hidden by *other* surfaces
     are refined as usual, so that visible pieces peeking out between hidden
@@ -256,11 +258,11 @@ def _with_marks(
     page: Page | tuple[float, float] | None,
     vis: Occlusion | None = None,
 ) -> Drawing:
-    """The drawing, with the scene's labels and point marks placed (:mod:`lgraph._marks`)."""
+    """The drawing, with the scene's labels and point marks placed (:mod:`lgraph.render.marks`)."""
     labels, points = scene.labels, scene.points
     placed: list = []
     if labels or points:
-        from ._marks import place_marks
+        from .marks import place_marks
 
         vis = vis if vis is not None else Occlusion(nodes, projector)
         placed, dots = place_marks(labels, points, projector, vis, hidden_lines, hidden_style)
@@ -272,7 +274,7 @@ def _checked_page(page: object) -> Page | None:
     """``page`` as a Page (or None), checked before any rendering."""
     if page is None or isinstance(page, Page):
         return page
-    from .drawing import _page
+    from ..drawing import _page
 
     try:
         return _page(page)
