@@ -33,7 +33,8 @@ def test_html_build(tmp_path: Path) -> None:
     res = _sphinx("html", out, "-n", "-D", "lgraph_gallery_only=extra_hidden_dashed")
     assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-3000:]
     for page in ("index", "getting_started", "concepts", "tutorial_surface", "notebooks",
-                 "mathematics", "gallery", "limits", "api", "plotters_latex"):  # fmt: skip
+                 "mathematics", "gallery", "limits", "api", "plotters_latex",
+                 "architecture"):  # fmt: skip
         assert (out / f"{page}.html").exists(), page
     gallery_page = (out / "gallery.html").read_text(encoding="utf-8")
     assert 'src="gallery/extra_hidden_dashed.png"' in gallery_page

@@ -180,7 +180,7 @@ def render(
     page: Page | tuple[float, float] | None = None,
     hidden_style: Style | None = None,
 ) -> Drawing:
-    """Render ``scene`` as seen by ``projector`` (see :meth:`Scene.render`)."""
+    """Render ``scene`` as seen by ``projector`` (see :meth:`lgraph.Scene.render`)."""
     if not isinstance(projector, Projector):
         raise TypeError(
             "Scene.render: projector must be a ParallelProjector or CentralProjector, "

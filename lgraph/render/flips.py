@@ -6,7 +6,7 @@ ellipsoid are found by a safeguarded parabola search on a continuous hiding
 margin (about three steps); the rest by K-section on the exact visibility
 test.  Every result is verified by the full test, and both ends of every
 located flip are inserted into the samples.  Before refinement,
-:func:`seed_crossings` puts samples on both sides of the crossings of exact
+``seed_crossings`` puts samples on both sides of the crossings of exact
 ellipses that fall between two samples of one state.
 """
 

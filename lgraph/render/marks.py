@@ -2,7 +2,7 @@
 
 An anchor is hidden when the ray from it toward the viewer meets a surface of
 the scene (the same exact test as for the samples of the lines,
-:class:`lgraph.render.occlusion.Occlusion`).  Visible ones are placed; hidden ones
+``lgraph.render.occlusion.Occlusion``).  Visible ones are placed; hidden ones
 are left out, or kept and marked hidden with ``hidden_lines=True``; objects
 with ``always=True`` are placed as visible wherever they are.  A point mark
 becomes a stroke of family ``"point"``: two equal points drawn with round
