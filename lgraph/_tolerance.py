@@ -96,7 +96,7 @@ RULED_CHUNK = 1 << 21
 #: a ruled surface is developable when det(y', z, z') is below this (relative)
 RULED_DEVELOPABLE_RTOL = 1e-7
 
-# -- numeric line fields (lgraph.fieldlines) ---------------------------------
+# -- numeric line fields (lgraph.families.fieldlines) ---------------------------------
 #: local error allowed per integration step, relative to the parameter spans
 #: (lines of curvature: positions to ~1e-8 of the patch) ...
 FIELD_RTOL = 1e-8

@@ -7,7 +7,7 @@ window of the projection plane (the union, over all views, of the scene's
 projected extent), so the figure keeps its place and scale.
 
 The geometry that does not depend on the view (lines of curvature,
-geodesics, ...) is computed once per process (:mod:`lgraph.family_cache`);
+geodesics, ...) is computed once per process (:mod:`lgraph.families.cache`);
 only the contour, the sampling and the visibility are redone per frame.
 
 Frames run in this process, in a local process pool (the default for many

@@ -205,7 +205,7 @@ def asymptotic_field(surface: Any, uv: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return D, strength, np.stack([g11, g12, g22], axis=1)
 
 
-# how lines of each field end and how tightly they are integrated (lgraph.fieldlines)
+# how lines of each field end and how tightly they are integrated (lgraph.families.fieldlines)
 principal_field.stop = UMBILIC_STOP  # type: ignore[attr-defined]
 principal_field.rtol = FIELD_RTOL  # type: ignore[attr-defined]
 asymptotic_field.stop = PARABOLIC_STOP  # type: ignore[attr-defined]

@@ -3,7 +3,7 @@
 ``lg.interact(scene)`` returns an ipywidgets box (optional dependency,
 ``pip install 'lgraph[jupyter]'``) with the picture and its sliders; moving
 a slider re-renders the scene from the new view.  The view-independent
-geometry comes from the cache (:mod:`lgraph.family_cache`), so only the
+geometry comes from the cache (:mod:`lgraph.families.cache`), so only the
 contour and the visibility are recomputed.  lgraph imports ipywidgets only
 when :func:`interact` is called.
 """

@@ -325,8 +325,15 @@ def get_surface(name: str) -> Any:
 # -- families --------------------------------------------------------------------
 def _builtin_families() -> dict[str, Any]:
     # the modules of lgraph's own families register them when imported
-    from . import level_lines, parabolic, self_intersection, surface_curves  # noqa: F401
-    from .families import FAMILIES
+    from .families import (  # noqa: F401
+        FAMILIES,
+        asymptotic,
+        geodesic,
+        intersection,
+        level,
+        parabolic,
+        self_intersection,  # noqa: F401
+    )
 
     return FAMILIES
 

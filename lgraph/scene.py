@@ -26,7 +26,7 @@ from ._tolerance import CHORD_TOLERANCE
 from .curves import Curve, CurveOnSurface
 from .drawing import Drawing, Page
 from .families import FAMILIES, Contour, Family
-from .family_cache import family_batches
+from .families.cache import family_batches
 from .geometry.transforms import IDENTITY, Transform
 from .style import OUTLINE, Style
 from .surfaces._base import Surface

@@ -1,4 +1,4 @@
-"""The cache of view-independent geometry (lgraph.family_cache)."""
+"""The cache of view-independent geometry (lgraph.families.cache)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import lgraph as lg
-from lgraph import family_cache
+from lgraph.families import cache as family_cache
 from lgraph.families import Family
 
 VIEWS = [

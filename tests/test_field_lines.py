@@ -1,4 +1,4 @@
-"""Numeric line families (lgraph.fieldlines): complete, exact where the
+"""Numeric line families (lgraph.families.fieldlines): complete, exact where the
 parameter lines are the lines, free of corners at singular points, and the
 same on every machine.
 
@@ -17,8 +17,8 @@ from hypothesis import strategies as st
 
 import lgraph as lg
 from lgraph.curvature import asymptotic_field, principal_field
-from lgraph.field_families import field_line_batches
-from lgraph.fieldlines import trace
+from lgraph.families.fieldlines import trace
+from lgraph.families.numeric import field_line_batches
 
 
 def revolution(rho, z, u_range, poles):

@@ -10,7 +10,7 @@ import pytest
 from PIL import Image
 
 import lgraph as lg
-from lgraph import family_cache
+from lgraph.families import cache as family_cache
 
 
 def _scene() -> lg.Scene:

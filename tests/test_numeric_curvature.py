@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import lgraph as lg
-from lgraph.field_families import numeric_lines_of_curvature
+from lgraph.families.numeric import numeric_lines_of_curvature
 
 
 def _samples(batches, n=120):

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import lgraph as lg
-from lgraph.self_intersection import self_intersection_points
+from lgraph.families.self_intersection import self_intersection_points
 
 
 def _umbrella(u_range=(-1.0, 1.0)):

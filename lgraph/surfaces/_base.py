@@ -373,10 +373,10 @@ class Surface:
         """``n1`` and ``n2`` lines of the two principal families.
 
         Default: numeric integration of the principal direction field (see
-        :func:`lgraph.field_families.numeric_lines_of_curvature`; ``spacing`` is
+        :func:`lgraph.families.numeric.numeric_lines_of_curvature`; ``spacing`` is
         ``"complete"`` or ``"even"``); classes with closed forms override it.
         """
-        from ..field_families import numeric_lines_of_curvature
+        from ..families.numeric import numeric_lines_of_curvature
 
         return numeric_lines_of_curvature(self, n1, n2, spacing=spacing)
 

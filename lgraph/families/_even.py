@@ -2,7 +2,7 @@
 come closer than half the spacing to a line already drawn (Jobard and Lefer
 1997), so lines neither bunch up (at umbilics, say) nor leave gaps.
 
-The lines themselves are traced by :func:`lgraph.fieldlines.trace`; this
+The lines themselves are traced by :func:`lgraph.families.fieldlines.trace`; this
 module only chooses seeds and trims.
 """
 
@@ -12,8 +12,8 @@ from typing import Any
 
 import numpy as np
 
+from ..curves import CurveBatch
 from ._seeds import _crossing, _grid, _spread
-from .curves import CurveBatch
 from .fieldlines import FieldLines, trace
 
 __all__ = ["even_batches"]

@@ -3,7 +3,7 @@
 A *line field* (:func:`lgraph.curvature.principal_field`,
 :func:`lgraph.curvature.asymptotic_field`) gives two unoriented directions at
 every point of the parameter plane.  Which lines a family draws is decided in
-:mod:`lgraph.field_families`; derivation and guarantees:
+:mod:`lgraph.families.numeric`; derivation and guarantees:
 ``docs/mathematics.rst``, "Numeric line families".
 
 * The curve parameter is 3-D arc length.  Every line advances in lockstep with
@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ._tolerance import (
+from .._tolerance import (
     FIELD_CLOSE_RTOL,
     FIELD_FIRST_STEP,
     FIELD_MAX_ITERATIONS,
@@ -46,7 +46,7 @@ from ._tolerance import (
     FIELD_SINGULAR_RTOL,
     UMBILIC_STOP,
 )
-from .curves import CurveBatch
+from ..curves import CurveBatch
 
 __all__ = ["FieldLines", "trace"]
 

@@ -16,15 +16,15 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import attrs
 import numpy as np
 
-from ._own import CONTOUR
-from ._validate import count, finite_positive, one_of
-from .curves import CurveBatch
+from .._own import CONTOUR
+from .._validate import count, finite_positive, one_of
+from ..curves import CurveBatch
 
 SPACINGS = ("complete", "even")
 
 if TYPE_CHECKING:
-    from .projectors import Projector
-    from .surfaces._base import Surface
+    from ..projectors import Projector
+    from ..surfaces._base import Surface
 
 __all__ = [
     "Family",
@@ -51,7 +51,7 @@ class Family:
 
     ``view_dependent`` says whether the curves change with the projector; a
     family that sets it False has its curves computed once per surface and
-    reused for every view (:mod:`lgraph.family_cache`).  The default, True,
+    reused for every view (:mod:`lgraph.families.cache`).  The default, True,
     is the safe one for families that do not say.
     """
 
@@ -166,7 +166,7 @@ class LinesOfCurvature(Family):
 
     Each surface class supplies its closed forms through
     ``surface.lines_of_curvature(n1, n2)``; other surfaces integrate the
-    principal directions (:mod:`!lgraph.fieldlines`).  Numeric lines are
+    principal directions (:mod:`!lgraph.families.fieldlines`).  Numeric lines are
     complete (``spacing="complete"``, the default: each runs to the patch
     boundary, a pole or an umbilic, or closes) or trimmed where they come
     close to another line of their family (``spacing="even"``, evenly spaced

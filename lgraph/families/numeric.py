@@ -4,11 +4,11 @@
   of curvature, the paper's Proposition 4.1; ``L11 = L22 = 0`` for asymptotic
   lines) the parameter lines are drawn: exact.
 * Otherwise lines are complete by default: candidates are traced together
-  (:func:`lgraph.fieldlines.trace`) through seeds spread along a transversal
+  (:func:`lgraph.families.fieldlines.trace`) through seeds spread along a transversal
   line through the middle of the patch and over a coarse grid, and ``n`` are
   picked to cover the patch as evenly as they allow, none twice.
   ``spacing="even"`` instead trims lines where they come closer than half
-  the spacing to another (evenly spaced streamlines, ``lgraph._even_spacing``).
+  the spacing to another (evenly spaced streamlines, ``lgraph.families._even``).
 * Lines of curvature end at umbilics (:func:`umbilics`).
 
 Derivation: ``docs/mathematics.rst``, "Numeric line families".
@@ -26,11 +26,11 @@ from typing import Any
 
 import numpy as np
 
+from .._tolerance import FIELD_DUPLICATE_RTOL, PARAMETER_LINES_RTOL
+from ..curvature import _frame, asymptotic_field, principal_field
+from ..curves import CurveBatch
+from . import SPACINGS, parameter_line_batches
 from ._seeds import _center_seed, _crossing, _grid, _spread, _stable
-from ._tolerance import FIELD_DUPLICATE_RTOL, PARAMETER_LINES_RTOL
-from .curvature import _frame, asymptotic_field, principal_field
-from .curves import CurveBatch
-from .families import SPACINGS, parameter_line_batches
 from .fieldlines import FieldLines, _rel, trace
 
 __all__ = ["field_line_batches", "numeric_lines_of_curvature", "umbilics"]
@@ -233,7 +233,7 @@ def field_line_batches(
     e = D[0, :, :1] * x1 + D[0, :, 1:] * x2
     a = 0 if abs(e[0] @ x2) >= abs(e[1] @ x2) else 1
     if spacing == "even":
-        from ._even_spacing import even_batches
+        from ._even import even_batches
 
         return even_batches(surface, field, both, a, n1, n2, stop, family, singular)
     grid = _grid(surface, field, stop)
@@ -273,7 +273,7 @@ def field_line_batches(
 
 def numeric_lines_of_curvature(surface: Any, n1: int, n2: int, spacing: str = "complete") -> list:
     """Lines of curvature of any surface, integrated from the principal
-    direction field (:mod:`lgraph.fieldlines`).
+    direction field (:mod:`lgraph.families.fieldlines`).
 
     ``n1`` lines of the family that runs like the ``u1 = const`` lines at the
     centre of the domain, ``n2`` of the other.  By default every line is

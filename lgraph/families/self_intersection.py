@@ -44,12 +44,12 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import attrs
 import numpy as np
 
-from .curves import CurveBatch
-from .families import Family, register_family
+from ..curves import CurveBatch
+from . import Family, register_family
 
 if TYPE_CHECKING:
-    from .projectors import Projector
-    from .surfaces._base import Surface
+    from ..projectors import Projector
+    from ..surfaces._base import Surface
 
 __all__ = ["SelfIntersection", "self_intersection_points"]
 
@@ -69,7 +69,7 @@ ACCEPT_RTOL = 1e-11
 def _leaf_pairs(surface: Surface) -> tuple[np.ndarray, np.ndarray, int]:
     """Index pairs ``(p, q)`` (flat, ``p < q``) of overlapping leaves more than
     ``NEAR_CELLS`` apart."""
-    from .surfaces._numeric import _hierarchy
+    from ..surfaces._numeric import _hierarchy
 
     H = _hierarchy(surface)
     n = H.n
@@ -339,7 +339,7 @@ class _Branch:
     def __init__(self, surface: Surface, a: np.ndarray, b: np.ndarray, closed: bool) -> None:
         from scipy.interpolate import CubicSpline, make_interp_spline
 
-        from .surfaces._numeric import _unwrap
+        from ..surfaces._numeric import _unwrap
 
         d = surface.domain
         scale = np.array([d.span(0), d.span(1)])
@@ -378,7 +378,7 @@ class SelfIntersection(Family):
     are one of the two parameter pairs of each point.
     """
 
-    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.family_cache)
+    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.families.cache)
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
         pts = self_intersection_points(surface)

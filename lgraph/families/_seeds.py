@@ -1,7 +1,7 @@
 """Seeds of numeric line families: where to start lines, and along which branch.
 
-Shared by the complete families (:mod:`lgraph.field_families`) and the evenly
-spaced ones (:mod:`lgraph._even_spacing`).
+Shared by the complete families (:mod:`lgraph.families.numeric`) and the evenly
+spaced ones (:mod:`lgraph.families._even`).
 """
 
 from __future__ import annotations

@@ -31,13 +31,13 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import attrs
 import numpy as np
 
-from ._validate import count, vector3
-from .families import Family, register_family
+from .._validate import count, vector3
+from . import Family, register_family
 
 if TYPE_CHECKING:
-    from .curves import CurveBatch
-    from .projectors import Projector
-    from .surfaces._base import Surface
+    from ..curves import CurveBatch
+    from ..projectors import Projector
+    from ..surfaces._base import Surface
 
 __all__ = ["LevelLines", "NAMED_FUNCTIONS", "surface_function", "level_batches"]
 
@@ -143,7 +143,7 @@ class LevelLines(Family):
     ValueError: LevelLines: direction must be a non-zero vector, got (0, 0, 0)
     """
 
-    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.family_cache)
+    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.families.cache)
 
     n: int = attrs.field(default=9, validator=count("LevelLines"))
     direction: np.ndarray = attrs.field(
@@ -215,7 +215,7 @@ def level_batches(
 ) -> list[CurveBatch]:
     """Batches (one per value) of the numeric level lines ``f(u1, u2) = value``,
     projected onto the level to ``LEVEL_FTOL * spread`` when evaluated."""
-    from .surfaces._numeric import project_to_zero, zero_set, zero_set_batch
+    from ..surfaces._numeric import project_to_zero, zero_set, zero_set_batch
 
     out = []
     for value in np.atleast_1d(np.asarray(values, float)).tolist():
@@ -242,10 +242,10 @@ def _exact_sections(surface: Surface, direction: np.ndarray, values: np.ndarray)
         res = own(d, values)
         if res is not None:
             return res
-    from .surfaces.quadrics import Quadric
+    from ..surfaces.quadrics import Quadric
 
     if isinstance(surface, Quadric):
-        from .surfaces._conic import plane_section
+        from ..surfaces._conic import plane_section
 
         out = []
         for value in values.tolist():

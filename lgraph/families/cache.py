@@ -44,10 +44,10 @@ from collections import OrderedDict
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from .curves import CurveBatch
-    from .families import Family
-    from .projectors import Projector
-    from .scene import Node
+    from ..curves import CurveBatch
+    from ..projectors import Projector
+    from ..scene import Node
+    from . import Family
 
 __all__ = [
     "family_batches",

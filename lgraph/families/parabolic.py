@@ -14,7 +14,7 @@ ones (``K < 0``).  Closed forms where they exist:
   an inflection (``SurfaceOfRevolution.parabolic_lines``).
 
 Any surface with a ``parabolic_lines()`` method answers itself; otherwise the
-level set ``K = 0`` is traced numerically (:func:`lgraph.level_lines.level_batches`).
+level set ``K = 0`` is traced numerically (:func:`lgraph.families.level.level_batches`).
 
 >>> import numpy as np
 >>> import lgraph as lg
@@ -31,13 +31,13 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import attrs
 import numpy as np
 
-from ._validate import count
-from .families import Family, parameter_line_batches, register_family
+from .._validate import count
+from . import Family, parameter_line_batches, register_family
 
 if TYPE_CHECKING:
-    from .curves import CurveBatch
-    from .projectors import Projector
-    from .surfaces._base import Surface
+    from ..curves import CurveBatch
+    from ..projectors import Projector
+    from ..surfaces._base import Surface
 
 __all__ = ["ParabolicLines"]
 
@@ -48,7 +48,7 @@ def _circles_u2(surface: Surface) -> list[CurveBatch]:
 
 
 def _closed_form(surface: Surface) -> Any:
-    from .surfaces.parametric import DupinCyclide, Torus
+    from ..surfaces.parametric import DupinCyclide, Torus
 
     if isinstance(surface, (Torus, DupinCyclide)):
         return _circles_u2
@@ -62,7 +62,7 @@ class ParabolicLines(Family):
     numeric (level set of ``K`` on a ``grid x grid`` parameter grid, refined by
     Newton's method) otherwise."""
 
-    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.family_cache)
+    view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.families.cache)
 
     grid: int = attrs.field(default=193, validator=count("ParabolicLines", 9, 4097))
 
@@ -70,7 +70,7 @@ class ParabolicLines(Family):
         exact = _closed_form(surface)
         if exact is not None:
             return exact(surface)
-        from .level_lines import gaussian_curvature, level_batches
+        from .level import gaussian_curvature, level_batches
 
         def k(u1: Any, u2: Any) -> np.ndarray:
             with np.errstate(all="ignore"):
