@@ -245,7 +245,7 @@ def _normalize(kind: str, name: str) -> str:
 def _reset() -> None:
     """Forget discovered plugins and what they registered (for tests)."""
     from . import families
-    from .backends import _BACKENDS
+    from ._backend_table import BACKENDS as _BACKENDS
 
     with _lock:
         for info in _plugins.get("family", {}).values():
@@ -377,7 +377,7 @@ class _LazyBackend:
 
     def load_writer(self) -> Any:
         """Import the plugin's writer (and register it in place of this stub)."""
-        from .backends import _BACKENDS
+        from ._backend_table import BACKENDS as _BACKENDS
 
         writer = self.info.load()
         if not isinstance(writer, _BrokenPlugin) and _BACKENDS.get(self.suffix) is self:
@@ -398,7 +398,7 @@ def load_backends() -> None:
     know; scans the entry points once and imports nothing until a plugin
     backend is first used.
     """
-    from .backends import _BACKENDS
+    from ._backend_table import BACKENDS as _BACKENDS
 
     with _lock:
         first = "backend" not in _plugins
@@ -441,7 +441,7 @@ def describe_plugins() -> str:
     >>> describe_plugins().splitlines()[-1]
     'built-in: ... surfaces, ... line families, ... backends'
     """
-    from .backends import _BACKENDS
+    from ._backend_table import BACKENDS as _BACKENDS
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PluginWarning)  # the status column says it

@@ -1,10 +1,8 @@
 """The package's import graph has no cycles (issue #12).
 
 Every ``import`` inside lgraph counts, at module level or inside a function;
-imports under ``if TYPE_CHECKING:`` (type hints only) do not.  One cycle is
-known and listed: ``lgraph.backends`` finds plugin backends through
-``lgraph.plugins``, which registers them in the backends' table.  Any other
-cycle fails this test.
+imports under ``if TYPE_CHECKING:`` (type hints only) do not.  Any cycle fails
+this test.
 """
 
 from __future__ import annotations
@@ -14,8 +12,6 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1] / "lgraph"
 
-#: strongly connected components allowed for now (to be removed, see the module docstring)
-KNOWN = [{"lgraph.backends", "lgraph.plugins"}]
 
 
 def _module_name(path: Path) -> str:
@@ -112,9 +108,8 @@ def test_the_cycle_finder_finds_a_cycle() -> None:
     assert strongly_connected(graph) == [{"a", "b", "c"}]
 
 
-def test_the_import_graph_has_no_cycles_but_the_known_one() -> None:
+def test_the_import_graph_has_no_cycles() -> None:
     graph = import_graph()
     assert "lgraph.curvature" not in graph["lgraph.families.fieldlines"]  # fields carry their stop
-    cycles = strongly_connected(graph)
-    unexpected = [sorted(c) for c in cycles if c not in KNOWN]
-    assert not unexpected, f"import cycles: {unexpected}"
+    cycles = [sorted(c) for c in strongly_connected(graph)]
+    assert not cycles, f"import cycles: {cycles}"

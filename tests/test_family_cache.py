@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import lgraph as lg
-from lgraph.families import cache as family_cache
 from lgraph.families import Family
+from lgraph.families import cache as family_cache
 
 VIEWS = [
     lg.ParallelProjector.from_angles(30, 25),

@@ -14,19 +14,12 @@ ValueError: Drawing.save: unknown file suffix '.doc'; known: ...
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable
 from typing import Any
 
 __all__ = ["get_backend", "register_backend", "backend_suffixes", "backend_options"]
 
-Writer = Callable[..., None]
-
-#: suffix -> "module:function" (imported lazily) or a callable
-_BACKENDS: dict[str, str | Writer] = {
-    ".pdf": "lgraph.backends.pdf:write_pdf",
-    ".png": "lgraph.backends.png:write_png",
-    ".svg": "lgraph.backends.svg:write_svg",
-}
+from .._backend_table import BACKENDS as _BACKENDS
+from .._backend_table import Writer
 
 
 def register_backend(suffix: str, writer: str | Writer, *, replace: bool = False) -> None:
