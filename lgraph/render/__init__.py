@@ -32,7 +32,7 @@ from ..geometry.transforms import Transform
 from ..projectors import CentralProjector, ParallelProjector, Projector
 from ..style import OUTLINE
 from .flips import locate_flips, seed_crossings
-from .occlusion import Occlusion, _twins
+from .occlusion import Occlusion, twin_groups
 from .sampling import Samples, check_points, refine
 
 if TYPE_CHECKING:
@@ -155,18 +155,15 @@ def _self_hidden(s: Samples, vis: Occlusion) -> np.ndarray | None:
     return (q >= 0) & (vis.q_node[np.maximum(q, 0)] == s.owner[s.cid])
 
 
-def _undrawn(nodes: tuple, ni: int) -> Any:
+def _undrawn(nodes: tuple, first: np.ndarray, ni: int) -> Any:
     """Node ``ni`` less what an earlier node holding the same surface in the
-    same place (a surface added twice) already draws: its contour and
-    boundary, and families equal to that node's.  Coincident copies are drawn
-    once, with the first copy's style."""
+    same place (a surface added twice; ``first`` from :func:`twin_groups`)
+    already draws: its contour and boundary, and families equal to that
+    node's.  Coincident copies are drawn once, with the first copy's style."""
     node = nodes[ni]
-    if node.surface is None:
+    if first[ni] < 0 or first[ni] == ni:
         return node
-    first = int(_twins(nodes, ni).min())
-    if first == ni:
-        return node
-    earlier = nodes[first]
+    earlier = nodes[int(first[ni])]
     families = tuple(f for f in node.families if f not in earlier.families)
     return attrs.evolve(node, families=families, contour=node.contour and not earlier.contour)
 
@@ -208,10 +205,13 @@ def render(
     page = _checked_page(page)
     hidden_style = HIDDEN_STYLE if hidden_style is None else hidden_style
     nodes = scene.nodes
+    first = twin_groups(nodes)
     batches = [
         (ni, b)
         for ni, node in enumerate(nodes)
-        for b in scene.batches(_undrawn(nodes, ni), local_projector(projector, node.transform))
+        for b in scene.batches(
+            _undrawn(nodes, first, ni), local_projector(projector, node.transform)
+        )
         if len(b)
     ]
     check_points(tol.INITIAL_SAMPLES * sum(len(b) for _, b in batches))

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -37,22 +37,39 @@ def _lies_on(surface: Surface, points: np.ndarray) -> np.ndarray:
     return dist <= tol.COINCIDENT_RTOL * size
 
 
-def _twins(nodes: tuple[Node, ...], j: int) -> np.ndarray:
-    """Indices of the nodes whose surface is node ``j``'s (the same object or
-    an equal one) under the same transform, ``j`` included."""
-    sj, tj = nodes[j].surface, nodes[j].transform
-    out = []
+def twin_groups(nodes: tuple[Node, ...]) -> np.ndarray:
+    """For every node, the index of the first node holding the same surface
+    (the same object or an equal one) under the same transform; -1 for nodes
+    without a surface.  Hashable surfaces are grouped through a dict (linear
+    in the number of nodes); others are compared with each other."""
+    first = np.full(len(nodes), -1, dtype=np.int64)
+    seen: dict[Any, int] = {}
+    unhashable: list[int] = []
     for k, node in enumerate(nodes):
         s = node.surface
-        if s is None or type(s) is not type(sj):
+        if s is None:
             continue
+        key = (type(s), s, node.transform)
         try:
-            same = s is sj or bool(s == sj)
-        except Exception:  # noqa: BLE001 - an __eq__ comparing arrays, ...: not twins
-            same = False
-        if same and node.transform == tj:
-            out.append(k)
-    return np.array(out, dtype=np.int64)
+            first[k] = seen.setdefault(key, k)
+            continue
+        except TypeError:  # a surface with array fields
+            pass
+        for j in unhashable:
+            other = nodes[j]
+            try:
+                same = type(other.surface) is type(s) and (
+                    other.surface is s or bool(other.surface == s)
+                )
+            except Exception:  # noqa: BLE001 - an __eq__ comparing arrays, ...: not twins
+                same = False
+            if same and other.transform == node.transform:
+                first[k] = j
+                break
+        else:
+            first[k] = k
+            unhashable.append(k)
+    return first
 
 
 class Occlusion:
@@ -112,7 +129,8 @@ class Occlusion:
         #: per asked surface, the nodes holding the same surface in the same place
         #: (their points are its own points: the tie rule for surfaces that have
         #: no implicit equation, such as a ParametricSurface added twice)
-        self.twins = {j: _twins(nodes, j) for j, _, _, _ in self.items}
+        first = twin_groups(nodes)
+        self.twins = {j: np.flatnonzero(first == first[j]) for j, _, _, _ in self.items}
         self._setup_grid(quads)
         #: relative cost of testing one point (1: the grouped quadric test)
         self.cost_per_point = 1.0 + sum(it[1].hit_cost for it in self.items)
