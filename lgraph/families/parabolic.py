@@ -48,7 +48,7 @@ def _circles_u2(surface: Surface) -> list[CurveBatch]:
 
 
 def _closed_form(surface: Surface) -> Any:
-    from ..surfaces.parametric import DupinCyclide, Torus
+    from ..surfaces.quartic import DupinCyclide, Torus
 
     if isinstance(surface, (Torus, DupinCyclide)):
         return _circles_u2
