@@ -17,17 +17,14 @@ from __future__ import annotations
 
 import math
 import os
-import signal
-import tempfile
-import threading
 from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Any
 
 import attrs
 import numpy as np
 
+from ._atomic import publish, removed_on_signals, temporary_beside
 from ._validate import finite_positive, nonnegative_finite
 from .style import ANCHORS, HIDDEN_STYLE, OUTLINE, Style, _color, _dash  # noqa: F401 - re-exported
 
@@ -117,6 +114,7 @@ class PlacedLabel:
     def origin(self) -> tuple[float, float]:
         """Where the text's baseline starts, relative to the anchor's page position (pt)."""
         from ._text import text_shape
+
         bx0, by0, bx1, by1 = text_shape(self.text, self.size).box
         pad = LABEL_PAD * self.size
         fx, fy = ANCHORS[self.anchor]
@@ -449,16 +447,11 @@ class Drawing:
             writer = get_backend(_format_suffix(format))
         else:
             writer = get_backend(path.suffix)
-        parent = path.parent if str(path.parent) else Path(".")
-        if not parent.is_dir():
-            raise FileNotFoundError(f"Drawing.save: folder {str(parent)!r} does not exist")
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=parent)
-        os.close(fd)
+        tmp = temporary_beside(path, "Drawing.save")
         try:
-            with _removed_on_signals(tmp):
+            with removed_on_signals(tmp):
                 writer(drawing, Path(tmp), **options)
-                os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600 files
-                os.replace(tmp, path)
+                publish(tmp, path)
         except BaseException as exc:
             try:
                 os.unlink(tmp)
@@ -503,47 +496,6 @@ class Drawing:
             f"<Drawing: {len(self.strokes)} strokes, {self.n_points} points, "
             f"page {w:.0f} x {h:.0f} pt>"
         )
-
-
-@contextmanager
-def _removed_on_signals(tmp: str) -> Iterator[None]:
-    """While writing ``tmp``: a SIGTERM or SIGHUP first removes it, then takes
-    its usual course (the previous handler, or the default action, which ends
-    the process).  Only in the main thread (where signal handlers live)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    signums = [getattr(signal, n) for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n)]
-    previous: dict[int, Any] = {}
-
-    def handler(signum: int, frame: Any) -> None:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        prev = previous.get(signum, signal.SIG_DFL)
-        signal.signal(signum, prev)
-        if callable(prev):
-            prev(signum, frame)
-        elif prev != signal.SIG_IGN:
-            os.kill(os.getpid(), signum)  # the default action, now that tmp is gone
-
-    try:
-        for sig in signums:
-            previous[sig] = signal.signal(sig, handler)
-    except (ValueError, OSError):  # pragma: no cover - signals unavailable here
-        pass
-    try:
-        yield
-    finally:
-        for sig, prev in previous.items():
-            signal.signal(sig, prev if prev is not None else signal.SIG_DFL)
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 #: Most dashes :func:`dash_polyline` makes of one polyline (memory budget).

@@ -40,10 +40,11 @@ from __future__ import annotations
 import io
 import os
 import struct
-import tempfile
 import zlib
 from pathlib import Path
 from typing import Any
+
+from ._atomic import publish, temporary_beside
 
 __all__ = [
     "FrameWriter",
@@ -63,12 +64,6 @@ ANIMATION_SUFFIXES = (".gif", ".png", ".apng", ".webp", ".pdf")
 FRAME_FORMATS = ("png", "svg", "pdf")
 
 
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
 class FrameWriter:
     """Base class: a temporary file beside ``path``, renamed by :meth:`close`.
 
@@ -83,12 +78,8 @@ class FrameWriter:
         self.n_frames = n_frames
         self.fps = fps
         self.count = 0
-        parent = self.path.parent if str(self.path.parent) else Path(".")
-        if not parent.is_dir():
-            raise FileNotFoundError(f"animate: folder {str(parent)!r} does not exist")
-        fd, tmp = tempfile.mkstemp(prefix=f".{self.path.name}.", suffix=".part", dir=parent)
-        self._file = os.fdopen(fd, "w+b")
-        self._tmp = tmp
+        self._tmp = temporary_beside(self.path, "animate")
+        self._file = open(self._tmp, "w+b")  # noqa: SIM115 - closed by close() or abort()
 
     def add(self, frame: Any) -> None:
         self._add(frame)
@@ -110,8 +101,7 @@ class FrameWriter:
         try:
             self._finish()
             self._file.close()
-            os.chmod(self._tmp, 0o666 & ~_umask())
-            os.replace(self._tmp, self.path)
+            publish(self._tmp, self.path)
         except BaseException:
             self.abort()
             raise
@@ -359,12 +349,10 @@ class FolderWriter:
         if not isinstance(data, (bytes, bytearray)):
             data = _png_bytes(data)
         path = self.frame_path(self.count)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=self.folder)
+        tmp = temporary_beside(path, "animate")
         try:
-            with os.fdopen(fd, "wb") as f:
-                f.write(data)
-            os.chmod(tmp, 0o666 & ~_umask())
-            os.replace(tmp, path)
+            Path(tmp).write_bytes(data)
+            publish(tmp, path)
         except BaseException:
             try:
                 os.unlink(tmp)
