@@ -1,0 +1,244 @@
+"""Scene files: a TOML description of a scene, rendered by ``lgraph render``.
+
+Nothing in a scene file is ever evaluated as Python: surfaces and families
+are looked up by registry name (:mod:`lgraph.plugins`), parameters must be
+plain numbers (a string where a number is expected is an error, whatever it
+contains), and every value is checked before anything is built.  The whole
+file is validated before :func:`~lgraph.load_scene_file` returns, so a partially
+valid file renders nothing.  Every problem of a file is reported at once:
+:class:`SceneFileError` has one line per problem naming the file, the line
+and the key::
+
+    scene.toml:9: object[0].params.a: expected a number, got a string '...'
+    scene.toml:14: save.dpi: unknown option 'dpi' for .pdf output; allowed: ...
+
+The format::
+
+    [projector]                  # parallel: direction = [x, y, z] or azimuth/elevation
+    kind = "central"             # central: eye (+ target) or azimuth/elevation/distance
+    eye = [9, -7, 6]
+    target = [0, 0, 0]
+
+    [page]                       # optional: width/height/margin in pt, or preset = "a4"
+    preset = "a4"
+    landscape = true
+
+    [render]                     # optional: keyword arguments of Scene.render
+    hidden_lines = true
+    tolerance = 1e-4
+    hidden_style = { color = "#808080", width = 0.3, dash = [2, 1.5] }
+
+    [save]                       # optional: options of the backend chosen by the output
+    title = "Ellipsoid"          # suffix (.pdf: compress, precision, title; .png: dpi,
+                                 # size, supersample; .svg: precision, layers; plugins: their own)
+
+    [save]                       # physical size of the figure (any format): pt, mm, cm, in
+    width = "8.5cm"              # and/or height = "6cm" (both: fit inside, aspect kept)
+
+    [[object]]                   # one table per surface
+    surface = "ellipsoid"
+    params = { a = 3, b = 2, c = 1.3 }
+    families = [{ name = "lines_of_curvature", n1 = 14, n2 = 18 }, "contour"]
+    transform = [{ translate = [0, 0, 0] }, { rotate = { axis = "z", degrees = 30 } },
+                 { scale = 2 }]  # applied in the order listed
+    style = { color = "#000000", width = 0.5 }   # or per family: style.contour = {...}
+    contour = true               # draw the contour (default true)
+    hides = true                 # hide what lies behind (default true)
+
+    [[labels]]                   # text at a 3-D point, hidden like the lines
+    text = "$\\kappa_1$"          # $...$ is TeX mathematics
+    at = [3, 0, 0]
+    anchor = "sw"                # center, n, ne, e, se, s, sw, w, nw (TikZ's meaning)
+    offset = [2, 2]              # pt; also size (pt), color, always
+
+    [[points]]                   # a dot at a 3-D point: at, size (pt), color, always
+    at = [3, 0, 0]
+
+    [[group]]                    # a sub-scene: its members move with its transform,
+    transform = [{ translate = [0, 4, 0] }]   # and take its style unless they set one
+    style = { color = "#0033cc" }
+    [[group.object]]             # members: object, labels, points and group tables
+    surface = "sphere"           # (groups nest to any depth)
+    params = { r = 1 }
+
+Every table and key:
+
+==============  ========================================================================
+table           keys
+==============  ========================================================================
+``projector``   ``kind`` (``"parallel"`` or ``"central"``, required); parallel:
+                ``direction`` (3 numbers, toward the viewer) or ``azimuth`` and
+                ``elevation`` (degrees), ``up`` (with ``direction``); central: ``eye``
+                and ``target`` (3 numbers each) or ``azimuth``, ``elevation`` and
+                ``distance``, ``up`` (with ``eye``).  Required.
+``page``        ``preset`` (``"a4"``, ``"a5"``, ``"letter"``) with ``landscape`` and
+                ``margin``; or ``width`` and ``height`` (pt, both), ``margin``,
+                ``extent``.  Optional: the default crops the page to the figure.
+``render``      ``hidden_lines`` (bool), ``tolerance`` (1e-9 to 0.1 of the figure's
+                diagonal), ``hidden_style`` (a style table).  Optional.
+``save``        ``width``, ``height`` (a physical size such as ``"8.5cm"``, any format)
+                and the options of the output's backend (see
+                :func:`lgraph.backends.backend_options`).  Optional.
+``[[object]]``  ``surface`` (a registry name, ``lgraph plugins`` lists them, required),
+                ``params`` (the surface's parameters by name: numbers or arrays of
+                numbers), ``families`` (names, or tables with ``name`` and the
+                family's parameters; default ``["parameter_lines"]``), ``transform``
+                (an array of ``{ translate = [x, y, z] }``, ``{ rotate = { axis =
+                "x" | "y" | "z" | [x, y, z], degrees = d } }``, ``{ scale = s | [sx,
+                sy, sz] }``), ``style`` (a style table, or one per family name with
+                ``default`` for the rest), ``contour`` and ``hides`` (bools).
+``[[labels]]``  ``text`` and ``at`` (required), ``offset``, ``anchor``, ``size``,
+                ``color``, ``always``.
+``[[points]]``  ``at`` (required), ``size``, ``color``, ``always``.
+``[[group]]``   ``transform``, ``style`` and members: ``object``, ``labels``,
+                ``points`` and ``group`` tables (nested to any depth).
+style table     ``color`` (``"#rrggbb"``, a name or 3 numbers in [0, 1]), ``width``
+                (pt), ``dash`` (an array of on/off lengths in pt).
+==============  ========================================================================
+
+TOML is read with :mod:`!tomllib` (Python >= 3.11); on Python 3.10 with the
+``tomli`` package (a dependency of lgraph there).  The file is UTF-8, with or
+without a byte-order mark.
+
+>>> import tempfile, os
+>>> text = '''
+... [projector]
+... kind = "parallel"
+... azimuth = 30
+... elevation = 20
+... [[object]]
+... surface = "sphere"
+... params = { r = 1 }
+... families = [{ name = "parameter_lines", n1 = 4, n2 = 8 }]
+... '''
+>>> with tempfile.TemporaryDirectory() as tmp:
+...     path = os.path.join(tmp, "s.toml")
+...     with open(path, "w") as f:
+...         _ = f.write(text)
+...     scene, projector, options = load_scene_file(path)
+>>> len(scene), type(projector).__name__, options
+(1, 'ParallelProjector', {'render': {}, 'save': {}})
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+from typing import Any
+
+from ._errors import _Invalid
+from ._locate import _key_text, _Locator  # noqa: F401 - _Locator: used by tests
+from ._schema import _OBJECT, _STYLE, _TOP, parse_scene  # noqa: F401 - the format's keys
+
+__all__ = ["load_scene_file", "parse_scene", "SceneFileError"]
+
+
+class SceneFileError(Exception):
+    """A scene file that cannot be rendered; the message has one line per
+    problem, ``file:line: key: what is wrong``.  ``path``, ``line`` and
+    ``key`` are those of the first problem; ``errors`` lists every problem as
+    ``(line, key, message)``."""
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        path: str = "",
+        line: int | None = None,
+        key: str = "",
+        errors: list[tuple[int | None, str, str]] | None = None,
+    ):
+        super().__init__(message)
+        self.path = path
+        self.line = line
+        self.key = key
+        self.errors = errors if errors is not None else [(line, key, message)]
+
+
+# -- entry point -----------------------------------------------------------------------
+def _toml() -> Any:
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10: the tomli package, if installed
+        try:
+            import tomli as tomllib  # type: ignore[no-redef]
+        except ModuleNotFoundError:
+            raise SceneFileError(
+                "reading scene files needs Python >= 3.11 or the 'tomli' package"
+            ) from None
+    return tomllib
+
+
+def load_scene_file(
+    path: str | os.PathLike[str], output: str | os.PathLike[str] | None = None
+) -> tuple[Any, Any, dict[str, Any]]:
+    """Read and validate a TOML scene file.
+
+    ``output`` is the file the figure will be written to (default: the scene
+    file with suffix ``.pdf``): its suffix chooses the backend whose options
+    ``[save]`` may give.
+
+    Returns
+    -------
+    scene : Scene
+    projector : Projector
+    options : dict
+        ``{"render": kwargs of Scene.render (hidden_lines, tolerance, page,
+        hidden_style), "save": kwargs of Drawing.save (dpi, ...)}``.
+
+    Raises
+    ------
+    SceneFileError
+        With one line ``file:line: key: problem`` per problem found (all of
+        them).  Nothing is built for a file with any problem.
+    """
+    tomllib = _toml()
+    shown = str(path)
+    suffix = Path(output).suffix if output is not None else ".pdf"
+    try:
+        text = Path(path).read_text(encoding="utf-8-sig")  # a BOM is fine
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise SceneFileError(f"{shown}: cannot read the scene file: {reason}", path=shown) from None
+    try:
+        data = tomllib.loads(text)
+    except RecursionError:
+        raise SceneFileError(
+            f"{shown}: invalid TOML: arrays or tables nested too deeply", path=shown
+        ) from None
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc)
+        m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
+        line = int(m.group(1)) if m else None
+        reason = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg)
+        near = ""
+        if line is not None:
+            src = text.splitlines()[line - 1].strip() if line <= len(text.splitlines()) else ""
+            km = re.match(r"\[*\s*([\w.\-\"']+)", src)
+            near = f"{km.group(1)}: " if km else ""
+            src_short = src if len(src) <= 50 else src[:47] + "..."
+            reason = f"{reason} in {src_short!r}" if src else reason
+        loc = f"{shown}:{line}" if line else shown
+        raise SceneFileError(
+            f"{loc}: {near}invalid TOML: {reason}", path=shown, line=line, key=near.rstrip(": ")
+        ) from None
+    try:
+        return parse_scene(data, suffix)
+    except RecursionError:
+        raise SceneFileError(f"{shown}: values nested too deeply", path=shown) from None
+    except _Invalid as exc:
+        locator = _Locator(text)
+        errors = []
+        for e in [exc, *exc.more]:
+            line = locator.line_of(e.key)
+            errors.append((line, _key_text(e.key), " ".join(e.message.split())))
+        errors.sort(key=lambda e: (e[0] is None, e[0] or 0))
+        lines = []
+        for line, key, message in errors:
+            loc = f"{shown}:{line}" if line else shown
+            lines.append(f"{loc}: {key}: {message}" if key else f"{loc}: {message}")
+        first = errors[0]
+        raise SceneFileError(
+            "\n".join(lines), path=shown, line=first[0], key=first[1], errors=errors
+        ) from None
