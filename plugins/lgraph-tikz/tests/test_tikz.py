@@ -204,18 +204,27 @@ def test_registered_as_the_tex_backend(tmp_path: Path) -> None:
     assert not (tmp_path / "y.tex").exists()
 
 
-def test_lgraph_render_writes_tikz(tmp_path: Path) -> None:
+SPHERE_SCENE = (
+    '[projector]\nkind = "parallel"\nazimuth = 30\nelevation = 20\n'
+    '[[object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
+)
+
+
+def _render(tmp_path: Path, scene_text: str) -> tuple[subprocess.CompletedProcess, Path]:
+    """``lgraph render fig.toml -o fig.tex`` in a child process."""
     if not registered():
         pytest.skip("lgraph-tikz is not installed: pip install -e plugins/lgraph-tikz")
-    scene = tmp_path / "fig.toml"
-    scene.write_text(
-        '[projector]\nkind = "parallel"\nazimuth = 30\nelevation = 20\n'
-        '[[object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
-        'families = [{ name = "parameter_lines", n1 = 3, n2 = 4 }]\n'
-    )
-    out = tmp_path / "fig.tex"
+    scene, out = tmp_path / "fig.toml", tmp_path / "fig.tex"
+    scene.write_text(scene_text)
     r = subprocess.run([sys.executable, "-m", "lgraph", "render", str(scene), "-o", str(out)],
                        capture_output=True, text=True, timeout=300)  # fmt: skip
+    return r, out
+
+
+def test_lgraph_render_writes_tikz(tmp_path: Path) -> None:
+    r, out = _render(
+        tmp_path, SPHERE_SCENE + 'families = [{ name = "parameter_lines", n1 = 3, n2 = 4 }]\n'
+    )
     assert r.returncode == 0, r.stderr
     text = out.read_text()
     assert "\\begin{tikzpicture}" in text
@@ -225,22 +234,11 @@ def test_lgraph_render_writes_tikz(tmp_path: Path) -> None:
 def test_scene_file_save_options_reach_the_tikz_writer(tmp_path: Path) -> None:
     """``[save] standalone = true, width = "6cm"`` of a scene file: checked
     against the options the TikZ writer declares, then passed to it."""
-    if not registered():
-        pytest.skip("lgraph-tikz is not installed: pip install -e plugins/lgraph-tikz")
-    scene = tmp_path / "fig.toml"
-    scene.write_text(
-        '[projector]\nkind = "parallel"\nazimuth = 30\nelevation = 20\n'
-        '[[object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
-        '[save]\nstandalone = true\nwidth = "6cm"\n'
-    )
-    out = tmp_path / "fig.tex"
-    r = subprocess.run([sys.executable, "-m", "lgraph", "render", str(scene), "-o", str(out)],
-                       capture_output=True, text=True, timeout=300)  # fmt: skip
+    save = '[save]\nstandalone = true\nwidth = "6cm"\n'
+    r, out = _render(tmp_path, SPHERE_SCENE + save)
     assert r.returncode == 0, r.stderr
     text = out.read_text()
     assert text.count("\\documentclass") == 1 and "\\end{document}" in text
     assert "6 x 6 cm" in text
-    scene.write_text(scene.read_text() + "standalone_typo = 1\n")
-    r = subprocess.run([sys.executable, "-m", "lgraph", "render", str(scene), "-o", str(out)],
-                       capture_output=True, text=True, timeout=300)  # fmt: skip
+    r, _ = _render(tmp_path, SPHERE_SCENE + save + "standalone_typo = 1\n")
     assert r.returncode == 2 and "standalone_typo" in r.stderr
