@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tests=(tests/test_field_lines.py tests/test_numeric_curvature.py tests/test_surface_curves.py
-       tests/test_parametric.py lgraph/fieldlines.py lgraph/curvature.py)
+       tests/test_parametric.py lgraph/families lgraph/curvature.py)
 
 features="$(python .ci/npy_dispatch.py)"
 echo "ci: numeric families with NPY_DISABLE_CPU_FEATURES='$features'"
