@@ -72,18 +72,18 @@ def _crossing(field: Any, surface: Any, uv: np.ndarray, tangent: np.ndarray) -> 
     return D[np.arange(len(uv)), (c[:, 1] < c[:, 0]).astype(int)]
 
 
+def cell_centres(domain: Any, n: int) -> np.ndarray:
+    """The centres ``(n * n, 2)`` of an ``n x n`` grid of cells over the
+    parameter rectangle (never on an edge, a seam or a pole)."""
+    f = (np.arange(n) + 0.5) / n
+    axes = [domain.range(i)[0] + domain.span(i) * f for i in (0, 1)]
+    return np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 2)
+
+
 def _grid(surface: Any, field: Any, stop: float, n: int = 24) -> tuple:
     """Grid points of the patch where the field is well defined: parameters,
     points and area weights (zero where the field is not)."""
-    d = surface.domain
-    axes = []
-    for i in (0, 1):
-        lo, hi = d.range(i)
-        if d.periodic[i]:
-            axes.append(lo + (hi - lo) * (np.arange(n) + 0.5) / n)
-        else:
-            axes.append(lo + (hi - lo) * (np.arange(n) + 0.5) / n)
-    G = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 2)
+    G = cell_centres(surface.domain, n)
     _, strength, g = field(surface, G)
     with np.errstate(invalid="ignore"):
         area = np.sqrt(np.maximum(g[:, 0] * g[:, 2] - g[:, 1] ** 2, 0.0))

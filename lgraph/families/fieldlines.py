@@ -142,9 +142,9 @@ def _rel(p: np.ndarray, seed: np.ndarray, span: np.ndarray, per: np.ndarray) -> 
     return np.where(per, q - np.round(q), q)
 
 
-def _closest(C: np.ndarray, upto: np.ndarray, h: np.ndarray, seed: np.ndarray,
-             span: np.ndarray, per: np.ndarray) -> tuple[np.ndarray, ...]:  # fmt: skip
-    """The fraction (at most ``upto``) where each cubic passes closest to its
+def _closest(C: np.ndarray, h: np.ndarray, seed: np.ndarray, span: np.ndarray,
+             per: np.ndarray) -> tuple[np.ndarray, ...]:  # fmt: skip
+    """The fraction (0..1) where each cubic passes closest to its
     seed (scaled parameters): the best of 33 samples, then Newton on
     ``(p - seed) . p' = 0``; with the point and tangent there."""
     grid = np.linspace(0.0, 1.0, 33)
@@ -152,14 +152,14 @@ def _closest(C: np.ndarray, upto: np.ndarray, h: np.ndarray, seed: np.ndarray,
     p = ((C[:, None, 3] * t + C[:, None, 2]) * t + C[:, None, 1]) * t + C[:, None, 0]
     q = (p - seed[:, None]) / span
     q = np.where(per, q - np.round(q), q)
-    th = np.minimum(grid[np.argmin((q * q).sum(axis=2), axis=1)], upto)
+    th = grid[np.argmin((q * q).sum(axis=2), axis=1)]
     for _ in range(6):
         p, dp = _at(C, th, h)
         r = _rel(p, seed, span, per) / span  # gradient of the scaled distance
         w = dp * h[:, None]
         with np.errstate(invalid="ignore", divide="ignore"):
             step = np.einsum("ij,ij->i", r, w) / np.einsum("ij,ij->i", w / span, w / span)
-        th = np.clip(th - np.nan_to_num(step), 0.0, upto)
+        th = np.clip(th - np.nan_to_num(step), 0.0, 1.0)
     p, dp = _at(C, th, h)
     return th, p, dp
 
@@ -347,7 +347,7 @@ def trace(
         if not len(g):
             continue
         hg = h[g]
-        C = _cubic(y[g], k1[g], y5[g], k7[g], hg)
+        step = (y[g], k1[g], y5[g], k7[g], hg)  # the steps' cubics are built where needed
         y1, k1n = y5[g].copy(), k7[g].copy()
         r5 = hg[:, None] * sum(c * kj[g] for c, kj in zip(_D, ks) if c)
         stop_here = np.zeros(len(g), bool)
@@ -358,7 +358,7 @@ def trace(
         # leaving the patch across a non-periodic side: end exactly on it
         out = np.flatnonzero((((y1 < lo) | (y1 > hi)) & ~per).any(axis=1))
         if len(out):
-            th = _exit(C[out], lo, hi, per)
+            th = _exit(_cubic(*(a[out] for a in step)), lo, hi, per)
             last = (th >= 1 - _END_RTOL) | (th * hg[out] <= 10 * hmin)
             box = (np.where(per, -np.inf, lo), np.where(per, np.inf, hi))
             _finish(ends, out[last], th[last], np.clip(y1[out[last]], *box))
@@ -372,7 +372,7 @@ def trace(
             left[act[g[f[gap > 0.05]]]] = True
             if len(near):
                 seed = seeds[act[g[near]]]
-                th, p, _ = _closest(C[near], np.ones(len(near)), hg[near], seed, span, per)
+                th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], seed, span, per)
                 hit = np.abs(_rel(p, seed, span, per)).max(axis=1) < FIELD_CLOSE_RTOL
                 last = hit & ((th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin))
                 # the loop ends exactly on its seed (shifted by whole periods)
@@ -388,7 +388,7 @@ def trace(
             near = f[gap <= FIELD_SINGULAR_RTOL]
             if len(near):
                 target = np.broadcast_to(point, (len(near), 2))
-                th, p, _ = _closest(C[near], np.ones(len(near)), hg[near], target, span, per)
+                th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], target, span, per)
                 last = (th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin)
                 _finish(ends, near[last], th[last], y1[near[last]])
                 redo[near[~last]] = th[~last] * hg[near[~last]]

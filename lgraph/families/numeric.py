@@ -30,7 +30,7 @@ from .._tolerance import FIELD_DUPLICATE_RTOL, PARAMETER_LINES_RTOL
 from ..curvature import _frame, asymptotic_field, principal_field
 from ..curves import CurveBatch
 from . import SPACINGS, parameter_line_batches
-from ._seeds import _center_seed, _crossing, _grid, _spread, _stable
+from ._seeds import _center_seed, _crossing, _grid, _spread, _stable, cell_centres
 from .fieldlines import FieldLines, _rel, trace
 
 __all__ = ["field_line_batches", "numeric_lines_of_curvature", "umbilics"]
@@ -41,9 +41,7 @@ def _parameter_lines_are_field_lines(surface: Any, field: Any) -> bool:
     ``g12 = L12 = 0`` (lines of curvature, the paper's Proposition 4.1) or
     ``L11 = L22 = 0`` (asymptotic lines)."""
     d = surface.domain
-    f = (np.arange(24) + 0.5) / 24
-    g = np.stack(np.meshgrid(d.u1[0] + d.span(0) * f, d.u2[0] + d.span(1) * f,
-                             indexing="ij"), -1).reshape(-1, 2)  # fmt: skip
+    g = cell_centres(d, 24)
     _x1, _x2, (g11, g12, g22), (L11, L12, L22) = _frame(surface, g)
     with np.errstate(invalid="ignore", divide="ignore"):
         scale = np.sqrt(g11 * g22)
@@ -79,8 +77,7 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
     d = surface.domain
     span = np.array([d.span(0), d.span(1)])
     lo = np.array([d.u1[0], d.u2[0]])
-    axes = [lo[i] + span[i] * (np.arange(n) + 0.5) / n for i in (0, 1)]
-    G = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 2)
+    G = cell_centres(d, n)
     _x1, _x2, (g11, _g12, g22), (L11, L12, L22) = _frame(surface, G)
     with np.errstate(invalid="ignore", divide="ignore"):
         k = np.abs(L11) / g11 + np.abs(L22) / g22 + 2 * np.abs(L12) / np.sqrt(g11 * g22)
