@@ -32,7 +32,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "gallery"))
 
 import lgraph as lg  # noqa: E402
-from lgraph import family_cache  # noqa: E402
+from lgraph.families import cache as family_cache  # noqa: E402
 
 
 def _build(stem: str):
