@@ -29,13 +29,13 @@ ValueError: Label 'P': at must be three finite numbers, got (0, nan, 0)
 from __future__ import annotations
 
 import math
-import numbers
 from typing import Any
 
 import attrs
 import numpy as np
 
 from .._text import check_text
+from .._validate import _is_real
 from ..style import ANCHORS, Style, _color
 
 __all__ = ["Label", "Point", "ANCHORS"]
@@ -56,10 +56,6 @@ def _point3(owner: str, name: str, value: Any) -> np.ndarray:
         raise ValueError(f"{owner}: {name} must be three finite numbers, got {shown!r}")
     p.setflags(write=False)
     return p
-
-
-def _is_real(v: Any) -> bool:
-    return isinstance(v, numbers.Real) and not isinstance(v, bool)
 
 
 @attrs.frozen(eq=False)
