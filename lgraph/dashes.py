@@ -1,6 +1,6 @@
 """Dash patterns as pieces of polylines, for backends without native dashes.
 
-:func:`dash_polyline` cuts a polyline into the "on" intervals of a pattern
+:func:`~lgraph.drawing.dash_polyline` cuts a polyline into the "on" intervals of a pattern
 repeated along its arc length (the PNG backend and the plotter plugins use
 it).  Arc length and linear interpolation only; no formula of
 docs/mathematics.rst.

@@ -5,7 +5,7 @@ the scale and offset that put them on the page (in pt, y up): cropped to the
 figure or fitted inside a given page, and with labels, so that their text
 boxes (whose size in pt does not scale with the figure) fit as well.  No
 formula of docs/mathematics.rst: the layout is a one-dimensional fit per
-axis (:func:`_fit_scale` bisects a convex condition).
+axis (``_fit_scale`` bisects a convex condition).
 
 >>> Page(100, 100, margin=60)
 Traceback (most recent call last):

@@ -1,8 +1,8 @@
 """Figure objects that are not surfaces of study.
 
-* :mod:`lgraph.objects.marks` -- :class:`~lgraph.Label` (text at a 3-D
+* ``marks.py`` -- :class:`~lgraph.Label` (text at a 3-D
   point) and :class:`~lgraph.Point` (a dot there), hidden like the lines;
-* :mod:`lgraph.objects.shapes` -- :class:`~lgraph.Parallelogram` (a planar
+* ``shapes.py`` -- :class:`~lgraph.Parallelogram` (a planar
   patch, e.g. a tangent plane) and :class:`~lgraph.Arrow` (shaft and head),
   surfaces with exact ray tests and contours.
 
