@@ -56,10 +56,15 @@ def _boolean(key: Key, v: Any) -> bool:
 
 
 def _only(key: Key, table: Mapping[str, Any], allowed: tuple[str, ...]) -> None:
-    for k in table:
-        if k not in allowed:
-            where = f" in [{_key_text(key)}]" if key else ""
-            raise _Invalid(key + (k,), f"unknown key {k!r}{where}; allowed: {', '.join(allowed)}")
+    """Every key of ``table`` not in ``allowed`` is a problem (all reported at once)."""
+    where = f" in [{_key_text(key)}]" if key else ""
+    bad = [
+        _Invalid(key + (k,), f"unknown key {k!r}{where}; allowed: {', '.join(allowed)}")
+        for k in table
+        if k not in allowed
+    ]
+    if bad:
+        raise _Invalid(bad[0].key, bad[0].message, bad[1:])
 
 
 def _required(key: Key, table: Mapping[str, Any], name: str) -> Any:
