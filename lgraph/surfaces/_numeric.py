@@ -37,6 +37,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components, depth_first_order
 
 from .._own import CONTOUR, OFF, ON
+from .._roots import bracketed_roots
 from .._tolerance import HIT_CHUNK_RAYS, HIT_MAX_CANDIDATES, SELF_HIT_RTOL
 
 if TYPE_CHECKING:
@@ -58,6 +59,11 @@ HIT_NEWTON_STEPS = 30
 #: a contour point's ray counts a root within this distance (relative to the
 #: surface size) of its origin as its own (double) root
 CONTOUR_SELF_RTOL = 1e-5
+#: a crossing on a grid edge is refined to this fraction of the edge
+EDGE_XTOL = 1e-15
+#: ... or until ``|fun|`` is below this times the largest ``|fun|`` on the grid
+#: (its rounding level: the zero set is not defined more closely)
+EDGE_FTOL = 4 * np.finfo(float).eps
 
 
 # ---------------------------------------------------------------------------
@@ -134,32 +140,20 @@ def _grid_axis(surface: Surface, i: int, n: int) -> np.ndarray:
     return np.linspace(lo + inset * d.poles[i][0], hi - inset * d.poles[i][1], n)
 
 
-def _edge_roots(fun: Any, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray) -> Any:
+def _edge_roots(
+    fun: Any, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray, ftol: float = 0.0
+) -> Any:
     """Roots of ``fun`` on segments ``a -> b`` (points (n, 2)) with a sign change
-    (Illinois variant of regula falsi, vectorized)."""
-    ta, tb = np.zeros(len(a)), np.ones(len(a))
-    fa, fb = fa.copy(), fb.copy()
-    side = np.zeros(len(a), int)
-    t = ta.copy()
-    for _ in range(60):
-        with np.errstate(invalid="ignore", divide="ignore"):
-            t = np.where(fb != fa, (ta * fb - tb * fa) / (fb - fa), 0.5 * (ta + tb))
-        t = np.where(np.isfinite(t) & (t > ta) & (t < tb), t, 0.5 * (ta + tb))
-        p = a + t[:, None] * (b - a)
-        ft = fun(p)
-        same_a = np.sign(ft) == np.sign(fa)
-        # replace the endpoint with the same sign; Illinois halving on repeats
-        ta = np.where(same_a, t, ta)
-        fa_new = np.where(same_a, ft, fa)
-        fb_new = np.where(~same_a, ft, fb)
-        fb_new = np.where(same_a & (side == 1), 0.5 * fb_new, fb_new)
-        fa_new = np.where(~same_a & (side == -1), 0.5 * fa_new, fa_new)
-        tb = np.where(~same_a, t, tb)
-        side = np.where(same_a, 1, -1)
-        fa, fb = fa_new, fb_new
-        if np.all((tb - ta) < 1e-15) or np.all(ft == 0):
-            break
-    return a + t[:, None] * (b - a)
+    (:func:`lgraph._roots.bracketed_roots` in the segment parameter ``t`` in [0, 1]);
+    a point where ``|fun| <= ftol`` (its rounding level) is a root."""
+    d = b - a
+
+    def f(t: np.ndarray, sel: np.ndarray) -> np.ndarray:
+        return fun(a[sel] + t[:, None] * d[sel])
+
+    n = len(a)
+    t = bracketed_roots(f, np.zeros(n), np.ones(n), fa, fb, EDGE_XTOL, ftol)
+    return a + t[:, None] * d
 
 
 def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) -> list[CurveBatch]:
@@ -250,7 +244,9 @@ def zero_set(surface: Surface, fun: Any, grid: int = CONTOUR_GRID) -> list[tuple
     def fun_p(p: np.ndarray) -> np.ndarray:
         return fun(p[:, 0], p[:, 1])
 
-    pts = _edge_roots(fun_p, pa, pb, F[i0, j0], F[i1, j1])
+    # the rounding level of fun: a few units in the last place of its largest value
+    ftol = EDGE_FTOL * float(np.abs(F).max())
+    pts = _edge_roots(fun_p, pa, pb, F[i0, j0], F[i1, j1], ftol)
     m = len(ids)
     A = coo_matrix((np.ones(len(sa)), (index[sa], index[sb])), shape=(m, m)).tocsr()
     A = A + A.T
@@ -264,6 +260,8 @@ def zero_set(surface: Surface, fun: Any, grid: int = CONTOUR_GRID) -> list[tuple
         ends = members[deg[members] == 1]
         start = int(ends[0]) if len(ends) else int(members[0])
         order = depth_first_order(A, start, directed=False, return_predecessors=False)
+        if not np.ptp(pts[order], axis=0).any():
+            continue  # crossings on the edges around one grid node where fun vanishes: a point
         curves.append((pts[order], len(ends) == 0))
     return curves
 

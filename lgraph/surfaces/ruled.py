@@ -18,7 +18,7 @@ renderer asks reduces to one-dimensional problems in ``u1``:
 * hits: the ray ``P + s v`` meets ruling ``u1`` iff
   ``g(u1) = det(y(u1) - P, z(u1), v) = 0``.  ``g`` is linear in ``P`` and ``v``,
   so it is evaluated for all rays on a grid of ``u1`` by two matrix products;
-  brackets are refined by vectorized Illinois iterations and ``(u2, s)``
+  brackets are refined all at once (:func:`lgraph._roots.bracketed_roots`) and ``(u2, s)``
   follow from ``y + u2 z = P + s v``;
 * lines of curvature (developable surfaces): the rulings and the curves
   ``u2 = d - S(u1)`` with ``S = integral of y' . z`` (paper (4.2)): for
@@ -55,6 +55,7 @@ import attrs
 import numpy as np
 
 from .._own import CONTOUR
+from .._roots import bracketed_roots
 from .._tolerance import (
     RULED_CELLS_PER_UNIT as _CELLS_PER_UNIT,
 )
@@ -86,63 +87,14 @@ from ._base import Domain, Surface
 
 __all__ = ["RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"]
 
+#: the name surfaces/revolution.py and surfaces/_revolution_contour.py import
+_illinois = bracketed_roots
+
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.einsum("...i,...i->...", a, b)
-
-
-def _illinois(
-    f: Callable[[np.ndarray, np.ndarray], np.ndarray],
-    a: np.ndarray,
-    b: np.ndarray,
-    fa: np.ndarray,
-    fb: np.ndarray,
-    xtol: np.ndarray | float,
-    ftol: np.ndarray | float = 0.0,
-) -> np.ndarray:
-    """Roots of ``f`` in the brackets ``[a, b]`` (``fa``, ``fb`` of opposite signs
-    or zero), all at once: Illinois (modified regula falsi) with a fall-back to
-    bisection when a step gains little.  ``f(x, sel)`` evaluates bracket
-    numbers ``sel`` at ``x``; iteration stops when the bracket is narrower than
-    ``xtol`` or ``|f| <= ftol`` (the rounding level of ``f``)."""
-    a, b = np.array(a, float), np.array(b, float)
-    fa, fb = np.array(fa, float), np.array(fb, float)
-    n = len(a)
-    xtol = np.broadcast_to(np.asarray(xtol, float), (n,))
-    ftol = np.broadcast_to(np.asarray(ftol, float), (n,))
-    x = np.where(fa == 0, a, np.where(fb == 0, b, np.nan))
-    active = np.isnan(x)
-    side = np.zeros(n, np.int8)
-    slow = np.zeros(n, np.int8)
-    for _ in range(200):
-        idx = np.nonzero(active)[0]
-        if not len(idx):
-            break
-        A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = (A * FB - B * FA) / (FB - FA)
-        bis = (slow[idx] >= 2) | ~((c > A) & (c < B))
-        c = np.where(bis, 0.5 * (A + B), c)
-        fc = np.asarray(f(c, idx), float)
-        right = (fc < 0) == (FA < 0)  # the root lies in [c, B]
-        na, nb = np.where(right, c, A), np.where(right, B, c)
-        nfa, nfb = np.where(right, fc, FA), np.where(right, FB, fc)
-        kept = np.where(right, 1, -1).astype(np.int8)  # which end survived
-        twice = (kept == side[idx]) & ~bis
-        nfb = np.where(twice & right, 0.5 * nfb, nfb)
-        nfa = np.where(twice & ~right, 0.5 * nfa, nfa)
-        side[idx] = kept
-        slow[idx] = np.where((nb - na) > 0.5 * (B - A), slow[idx] + 1, 0)
-        a[idx], b[idx], fa[idx], fb[idx] = na, nb, nfa, nfb
-        small = np.abs(fc) <= ftol[idx]
-        done = small | ((nb - na) <= xtol[idx])
-        x[idx[done]] = np.where(small[done], c[done], 0.5 * (na[done] + nb[done]))
-        active[idx[done]] = False
-    rest = np.isnan(x)
-    x[rest] = 0.5 * (a[rest] + b[rest])
-    return x
 
 
 def _flips(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -331,7 +283,7 @@ class _Ruled(Surface):
         """Rays ``P + s v`` (``0 < s < smax``) meeting the drawn patch.
 
         Solves ``det(y(u1) - P, z(u1), v) = 0`` for all rays at once (grid scan,
-        pairs of close roots found at the extrema of ``g``, Illinois refinement),
+        pairs of close roots found at the extrema of ``g``, bracketed refinement),
         then ``y + u2 z = P + s v`` for ``(u2, s)``.
         """
         o = np.asarray(origins, float).reshape(-1, 3)
@@ -375,7 +327,7 @@ class _Ruled(Surface):
         er, ec = np.nonzero(cand)
         if len(er):
             a, b = u[ec], u[ec + 1]
-            mid = _illinois(
+            mid = bracketed_roots(
                 lambda x, s: self._dg(x, P[er[s]], V[er[s]]),
                 a,
                 b,
@@ -403,7 +355,7 @@ class _Ruled(Surface):
         # rounding level of g = det(y - P, z, v)
         ftol = 2e-15 * (self.size + np.linalg.norm(P[ra], axis=-1)) * grid["zmax"]
         ftol = ftol * np.linalg.norm(V[ra], axis=-1)
-        root = _illinois(
+        root = bracketed_roots(
             lambda x, s: self._g(x, P[ra[s]], V[ra[s]]), ua, ub, ga, gb, grid["xtol"], ftol
         )
         y, _, _, z, _, _ = self._rul(root, 0)
@@ -467,7 +419,7 @@ class _Ruled(Surface):
         _, cols = _flips(vals)
         if not len(cols):
             return np.empty(0)
-        return _illinois(
+        return bracketed_roots(
             lambda x, s: func(x),
             u[cols],
             u[cols + 1],
@@ -647,7 +599,7 @@ class _Ruled(Surface):
             if len(r):
                 rows.append(r)
                 a.append(
-                    _illinois(
+                    bracketed_roots(
                         lambda x, s, r=r, bound=bound: self._level_u2(x, d[r[s]]) - bound,
                         u[cols],
                         u[cols + 1],
