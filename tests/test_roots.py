@@ -129,9 +129,7 @@ def test_edge_roots_lie_on_the_zero_set():
 def test_zero_set_drops_a_zero_at_a_single_grid_node():
     # fun vanishes at one grid node and is negative around it: the crossings on
     # the four edges at that node are all the node itself, which is no curve
-    s = lg.ParametricSurface(
-        lambda u, v: np.stack([u, v, 0 * u], -1), (0.0, 1.0), (0.0, 1.0)
-    )
+    s = lg.ParametricSurface(lambda u, v: np.stack([u, v, 0 * u], -1), (0.0, 1.0), (0.0, 1.0))
     node = np.linspace(0.0, 1.0, 193)[96]
 
     def fun(u1: np.ndarray, u2: np.ndarray) -> np.ndarray:
