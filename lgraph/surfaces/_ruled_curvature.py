@@ -20,7 +20,8 @@ from .._tolerance import (
     RULED_DEVELOPABLE_RTOL as _DEVELOPABLE_RTOL,
 )
 from ..curves import CurveBatch
-from ._ruled_geometry import _dot, _flips, _RuledGeometry
+from ._ruled_geometry import _flips, _RuledGeometry
+from ._vec import dot as _dot
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 

@@ -39,10 +39,7 @@ from .._tolerance import (
 )
 from ..curves import CurveBatch
 from ._base import Domain, Surface
-
-
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.einsum("...i,...i->...", a, b)
+from ._vec import dot as _dot
 
 
 def _flips(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

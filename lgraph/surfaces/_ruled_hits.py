@@ -24,7 +24,8 @@ from .._tolerance import (
     RULED_CONTOUR_SELF_RTOL as _CONTOUR_SELF_RTOL,
 )
 from .._tolerance import SELF_HIT_RTOL
-from ._ruled_geometry import _dot, _flips, _RuledGeometry
+from ._ruled_geometry import _flips, _RuledGeometry
+from ._vec import dot as _dot
 
 
 class _RuledHits(_RuledGeometry):
