@@ -144,3 +144,19 @@ def test_zero_set_drops_a_zero_at_a_single_grid_node():
     (pts, closed), *rest = zero_set(s, circle)
     assert closed and not rest
     assert np.abs(np.hypot(pts[:, 0] - 0.5, pts[:, 1] - 0.5) - 0.3).max() < 1e-14
+
+
+def test_the_import_paths_other_modules_use_still_work():
+    # surfaces of revolution import the root finder as ruled._illinois; the line
+    # families and the tests import the numeric defaults from surfaces._numeric
+    from lgraph.surfaces import _numeric, ruled
+    from lgraph.surfaces._numeric_boxes import _hierarchy
+    from lgraph.surfaces._numeric_contour import _unwrap, project_to_zero, zero_set_batch
+
+    assert ruled._illinois is bracketed_roots
+    assert _numeric._hierarchy is _hierarchy and _numeric._unwrap is _unwrap
+    assert _numeric.project_to_zero is project_to_zero
+    assert _numeric.zero_set_batch is zero_set_batch
+    assert _numeric.zero_set is zero_set
+    for name in ("RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"):
+        assert getattr(lg, name) is getattr(ruled, name)
