@@ -20,7 +20,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline, make_interp_spline
 
 from .._own import CONTOUR, ON
-from ._vec import cross as _cross
+from ..geometry.vectors import cross as _cross
 from ._zero_set import CONTOUR_GRID, zero_set
 
 if TYPE_CHECKING:

@@ -18,8 +18,8 @@ import numpy as np
 
 from .._own import CONTOUR, OFF, ON
 from .._tolerance import HIT_CHUNK_RAYS, SELF_HIT_RTOL
+from ..geometry.vectors import cross as _cross
 from ._numeric_boxes import _candidates, _Hierarchy, _hierarchy, _inverse, _slab, _sub_boxes
-from ._vec import cross as _cross
 
 if TYPE_CHECKING:
     from ._base import Surface

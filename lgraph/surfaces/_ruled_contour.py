@@ -26,8 +26,8 @@ import numpy as np
 from .._own import CONTOUR
 from .._roots import bracketed_roots
 from ..curves import CurveBatch
+from ..geometry.vectors import dot as _dot
 from ._ruled_geometry import _flips, _RuledGeometry
-from ._vec import dot as _dot
 
 
 class _RuledContour(_RuledGeometry):

@@ -16,12 +16,10 @@ from __future__ import annotations
 import numpy as np
 
 from .._roots import bracketed_roots
-from .._tolerance import (
-    RULED_DEVELOPABLE_RTOL as _DEVELOPABLE_RTOL,
-)
+from .._tolerance import RULED_DEVELOPABLE_RTOL as _DEVELOPABLE_RTOL
 from ..curves import CurveBatch
+from ..geometry.vectors import dot as _dot
 from ._ruled_geometry import _flips, _RuledGeometry
-from ._vec import dot as _dot
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 

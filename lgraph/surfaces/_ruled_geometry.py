@@ -22,24 +22,14 @@ from typing import Any
 
 import numpy as np
 
-from .._tolerance import (
-    RULED_CELLS_PER_UNIT as _CELLS_PER_UNIT,
-)
-from .._tolerance import (
-    RULED_MAX_CELLS as _MAX_CELLS,
-)
-from .._tolerance import (
-    RULED_MIN_CELLS as _MIN_CELLS,
-)
-from .._tolerance import (
-    RULED_PRE_SAMPLES as _PRE_SAMPLES,
-)
-from .._tolerance import (
-    RULED_XTOL as _XTOL,
-)
+from .._tolerance import RULED_CELLS_PER_UNIT as _CELLS_PER_UNIT
+from .._tolerance import RULED_MAX_CELLS as _MAX_CELLS
+from .._tolerance import RULED_MIN_CELLS as _MIN_CELLS
+from .._tolerance import RULED_PRE_SAMPLES as _PRE_SAMPLES
+from .._tolerance import RULED_XTOL as _XTOL
 from ..curves import CurveBatch
+from ..geometry.vectors import dot as _dot
 from ._base import Domain, Surface
-from ._vec import dot as _dot
 
 
 def _flips(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

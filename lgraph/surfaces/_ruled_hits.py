@@ -17,15 +17,11 @@ import numpy as np
 
 from .._own import CONTOUR
 from .._roots import bracketed_roots
-from .._tolerance import (
-    RULED_CHUNK as _CHUNK,
-)
-from .._tolerance import (
-    RULED_CONTOUR_SELF_RTOL as _CONTOUR_SELF_RTOL,
-)
+from .._tolerance import RULED_CHUNK as _CHUNK
+from .._tolerance import RULED_CONTOUR_SELF_RTOL as _CONTOUR_SELF_RTOL
 from .._tolerance import SELF_HIT_RTOL
+from ..geometry.vectors import dot as _dot
 from ._ruled_geometry import _flips, _RuledGeometry
-from ._vec import dot as _dot
 
 
 class _RuledHits(_RuledGeometry):

@@ -41,9 +41,7 @@ import attrs
 import numpy as np
 
 from .._roots import bracketed_roots
-from .._tolerance import (
-    RULED_PRE_SAMPLES as _PRE_SAMPLES,
-)
+from .._tolerance import RULED_PRE_SAMPLES as _PRE_SAMPLES
 from .._validate import interval, vector3
 from ..curves import Curve, CurveBatch
 from ._ruled_contour import _RuledContour
