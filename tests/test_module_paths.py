@@ -42,14 +42,6 @@ OLD_PATHS = [
     ("lgraph.objects", "Point"),
     ("lgraph.objects", "Arrow"),
     ("lgraph.objects", "Parallelogram"),
-    ("lgraph.surfaces.quadric_patches", "HyperboloidOneSheet"),
-    ("lgraph.surfaces.quadric_patches", "HyperboloidTwoSheets"),
-    ("lgraph.surfaces.quadric_patches", "EllipticCone"),
-    ("lgraph.surfaces.quadric_patches", "EllipticParaboloid"),
-    ("lgraph.surfaces.quadric_patches", "HyperbolicParaboloid"),
-    ("lgraph.surfaces.quadric_patches", "EllipticCylinder"),
-    ("lgraph.surfaces.quadric_patches", "HyperbolicCylinder"),
-    ("lgraph.surfaces.quadric_patches", "ParabolicCylinder"),
     ("lgraph.scenefile", "load_scene_file"),
     ("lgraph.scenefile", "SceneFileError"),
 ]
@@ -67,10 +59,9 @@ def test_private_paths_that_plugins_backends_and_tests_use() -> None:
     from lgraph.page import _page as page_converter
     from lgraph.scenefile import _OBJECT, _STYLE, _TOP, _Locator, parse_scene
     from lgraph.surfaces._patch_quadric import _PatchQuadric as base
-    from lgraph.surfaces.quadric_patches import _PatchQuadric
 
     assert dash_polyline is dashes and MAX_DASHES == max_dashes and _page is page_converter
-    assert _PatchQuadric is base and issubclass(lgraph.EllipticCone, base)
+    assert issubclass(lgraph.EllipticCone, base) and issubclass(lgraph.HyperbolicCylinder, base)
     assert "object" in _TOP and "surface" in _OBJECT and "dash" in _STYLE
     assert callable(parse_scene) and callable(_Locator)
 
@@ -82,7 +73,6 @@ SPLIT = [
     "objects/__init__.py",
     "objects/marks.py",
     "objects/shapes.py",
-    "surfaces/quadric_patches.py",
     "surfaces/_patch_quadric.py",
     "surfaces/hyperboloids.py",
     "surfaces/paraboloids.py",

@@ -9,7 +9,7 @@ import pytest
 
 import lgraph as lg
 from lgraph._roots import bracketed_roots
-from lgraph.surfaces._numeric import _edge_roots, zero_set
+from lgraph.surfaces._zero_set import _edge_roots, zero_set
 
 EPS = np.finfo(float).eps
 
@@ -147,16 +147,7 @@ def test_zero_set_drops_a_zero_at_a_single_grid_node():
 
 
 def test_the_import_paths_other_modules_use_still_work():
-    # surfaces of revolution import the root finder as ruled._illinois; the line
-    # families and the tests import the numeric defaults from surfaces._numeric
-    from lgraph.surfaces import _numeric, ruled
-    from lgraph.surfaces._numeric_boxes import _hierarchy
-    from lgraph.surfaces._numeric_contour import _unwrap, project_to_zero, zero_set_batch
+    # surfaces of revolution import the root finder as ruled._illinois
+    from lgraph.surfaces import ruled
 
     assert ruled._illinois is bracketed_roots
-    assert _numeric._hierarchy is _hierarchy and _numeric._unwrap is _unwrap
-    assert _numeric.project_to_zero is project_to_zero
-    assert _numeric.zero_set_batch is zero_set_batch
-    assert _numeric.zero_set is zero_set
-    for name in ("RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"):
-        assert getattr(lg, name) is getattr(ruled, name)

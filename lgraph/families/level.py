@@ -7,7 +7,7 @@ parameter plane: marching squares on a parameter grid, every crossing refined
 on its grid edge to machine precision, joined into curves (closed where they
 close, also across periodic seams) and projected back onto ``f = value`` by
 Newton's method wherever the renderer evaluates them
-(:func:`lgraph.surfaces._numeric.zero_set`).  Where the class knows the
+(:func:`lgraph.surfaces._zero_set.zero_set`).  Where the class knows the
 section exactly it is used instead: plane sections of quadrics are conics
 (:func:`lgraph.surfaces._conic.plane_section`), and a surface offering
 ``level_lines(direction, values)`` (a surface of revolution cut across its
@@ -215,7 +215,8 @@ def level_batches(
 ) -> list[CurveBatch]:
     """Batches (one per value) of the numeric level lines ``f(u1, u2) = value``,
     projected onto the level to ``LEVEL_FTOL * spread`` when evaluated."""
-    from ..surfaces._numeric import project_to_zero, zero_set, zero_set_batch
+    from ..surfaces._numeric_contour import project_to_zero, zero_set_batch
+    from ..surfaces._zero_set import zero_set
 
     out = []
     for value in np.atleast_1d(np.asarray(values, float)).tolist():

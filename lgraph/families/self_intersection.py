@@ -5,7 +5,7 @@ A point of self-intersection has two parameter pairs, ``x(a) = x(b)`` with
 
 1. **Candidates**: the padded boxes of the surface's parameter-grid patches
    (the hierarchy the numeric ray test uses,
-   :mod:`lgraph.surfaces._numeric`) are intersected with each other level by
+   :mod:`lgraph.surfaces._numeric_boxes`) are intersected with each other level by
    level; overlapping leaf pairs that are not neighbours in the parameter
    plane (periodic seams included) may hold a piece of the curve.
 2. **Crossings**: the curve's preimage crosses the edges of the patches.  On
@@ -69,7 +69,7 @@ ACCEPT_RTOL = 1e-11
 def _leaf_pairs(surface: Surface) -> tuple[np.ndarray, np.ndarray, int]:
     """Index pairs ``(p, q)`` (flat, ``p < q``) of overlapping leaves more than
     ``NEAR_CELLS`` apart."""
-    from ..surfaces._numeric import _hierarchy
+    from ..surfaces._numeric_boxes import _hierarchy
 
     H = _hierarchy(surface)
     n = H.n
@@ -339,7 +339,7 @@ class _Branch:
     def __init__(self, surface: Surface, a: np.ndarray, b: np.ndarray, closed: bool) -> None:
         from scipy.interpolate import CubicSpline, make_interp_spline
 
-        from ..surfaces._numeric import _unwrap
+        from ..surfaces._numeric_contour import _unwrap
 
         d = surface.domain
         scale = np.array([d.span(0), d.span(1)])

@@ -2,16 +2,9 @@
 
 from ._base import CONTOUR, OFF, ON, Domain, Surface
 from .confocal import ConfocalQuadric, TripleOrthogonalSystem
-from .quadric_patches import (
-    EllipticCone,
-    EllipticCylinder,
-    EllipticParaboloid,
-    HyperbolicCylinder,
-    HyperbolicParaboloid,
-    HyperboloidOneSheet,
-    HyperboloidTwoSheets,
-    ParabolicCylinder,
-)
+from .cylinders import EllipticCylinder, HyperbolicCylinder, ParabolicCylinder
+from .hyperboloids import EllipticCone, HyperboloidOneSheet, HyperboloidTwoSheets
+from .paraboloids import EllipticParaboloid, HyperbolicParaboloid
 from .quadrics import Ellipsoid, Quadric, Sphere
 from .revolution import Pseudosphere, SurfaceOfRevolution
 from .ruled import GeneralCone, GeneralCylinder, RuledSurface, TangentSurface

@@ -361,9 +361,9 @@ class Surface:
         """Contour curves for ``projector`` (given in this surface's local frame).
 
         Default: numeric (marching squares on ``N . w = 0``, refined by Newton;
-        see :mod:`!lgraph.surfaces._numeric`).
+        see :mod:`!lgraph.surfaces._numeric_contour`).
         """
-        from ._numeric import contour
+        from ._numeric_contour import contour
 
         return contour(self, projector)
 
@@ -398,9 +398,9 @@ class Surface:
         Directions need not be unit vectors; ``s`` is measured in their units.
 
         Default: numeric (bounding-box hierarchy + Newton; see
-        :mod:`!lgraph.surfaces._numeric`).
+        :mod:`!lgraph.surfaces._numeric_hits`).
         """
-        from ._numeric import hits
+        from ._numeric_hits import hits
 
         return hits(self, origins, directions, smax, own)
 

@@ -53,7 +53,8 @@ from ..curves import Curve, CurveBatch
 from ..families import Family, parameter_line_batches
 from ._base import Domain, Surface
 from ._patch import clip_intervals
-from .quadric_patches import HyperboloidOneSheet, HyperboloidTwoSheets, _PatchQuadric
+from ._patch_quadric import _PatchQuadric
+from .hyperboloids import HyperboloidOneSheet, HyperboloidTwoSheets
 from .quadrics import Ellipsoid, Quadric
 
 __all__ = ["ConfocalQuadric", "TripleOrthogonalSystem"]
@@ -400,7 +401,7 @@ class TripleOrthogonalSystem:
         """Sphere ``r = radius``, cone ``theta = polar_angle`` (degrees, both
         nappes) and half-plane ``phi = azimuth`` (degrees) of spherical
         coordinates, with their intersection circles and arcs (Figure 6.1)."""
-        from .quadric_patches import EllipticCone
+        from .hyperboloids import EllipticCone
         from .quadrics import Sphere
 
         for name, v in (("radius", radius), ("polar_angle", polar_angle), ("azimuth", azimuth)):

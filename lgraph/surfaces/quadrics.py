@@ -5,7 +5,8 @@ point on the quadric itself the constant term vanishes, so its own root is
 ``s = 0`` and the second intersection is exactly ``s = -qb/qa``: no
 discriminant, which would be ill-conditioned for grazing rays near the contour.
 The bounded patches of the unbounded quadrics are in
-:mod:`lgraph.surfaces.quadric_patches`.
+:mod:`lgraph.surfaces.hyperboloids`, :mod:`lgraph.surfaces.paraboloids` and
+:mod:`lgraph.surfaces.cylinders`.
 
 >>> import numpy as np
 >>> e = Ellipsoid(3, 2, 1)
