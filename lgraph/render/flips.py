@@ -2,15 +2,19 @@
 
 Where an exact ellipse (a parameter line of an ellipsoid) crosses its own
 ellipsoid's contour, the flip is in closed form; other flips caused by an
-ellipsoid are found by a safeguarded parabola search on a continuous hiding
-margin (about three steps); the rest by K-section on the exact visibility
-test.  Every result is verified by the full test, and both ends of every
+ellipsoid, and flips on the curves of a surface that offers a hiding margin
+for its own points (:meth:`~lgraph.surfaces.Surface.visibility_margin`, e.g.
+a closed convex surface of revolution), are found by a safeguarded parabola
+search on that continuous margin (about three steps); the rest by K-section
+on the exact visibility test.  Every result is verified by the full test, and both ends of every
 located flip are inserted into the samples.  Before refinement,
 ``seed_crossings`` puts samples on both sides of the crossings of exact
 ellipses that fall between two samples of one state.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import attrs
 import numpy as np
@@ -67,18 +71,8 @@ class _Flips:
 
 def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
     """Flips caused by an ellipsoid: root finding on its continuous hiding
-    margin ``f`` (safeguarded, a handful of steps instead of dozens).
-
-    Each step evaluates ``f`` at an estimate ``u`` and at ``u -+ h``; the
-    bracket shrinks to the sub-interval where ``f`` changes sign, and the next
-    estimate is the root of the parabola through the three values (Newton's
-    step when ``h`` is too small for a clean second difference), or the
-    secant of the bracket's ends when that root leaves the bracket.  ``h``
-    follows the size of the last correction, so that once the estimates
-    converge the three points straddle the root and the bracket collapses
-    on both sides; at the end ``h`` is half the target width.  Results are
-    verified with the full visibility test; brackets that fail stay for
-    :func:`_k_section`."""
+    margin (:meth:`Occlusion.margin`, see :func:`_root_search`); exact
+    ellipses on their own ellipsoid start from the closed-form crossing."""
     if not vis.nq or not len(fl):
         return
     hid_end = np.where(fl.hlo, fl.f, fl.f + 1)
@@ -96,13 +90,79 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
     idx, fa, fb, q = idx[good], fa[good], fb[good], q[idx][good]
     a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
     b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
+    if s.ellipses is not None:
+        _closed_form(s, fl, vis, projector, idx, q, a, b)
+
+    def margin(xyz: np.ndarray, k: np.ndarray, _uv: np.ndarray) -> np.ndarray:
+        return vis.margin(xyz, q[k], fl.owner[idx[k]], fl.kind[idx[k]])
+
+    _root_search(s, fl, vis, projector, idx, a, b, fa, fb, margin)
+
+
+def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
+    """Flips on curves of a surface that offers a hiding margin for its own
+    points (:meth:`~lgraph.surfaces.Surface.visibility_margin`, e.g. a closed
+    convex surface of revolution): root finding on it where it is at most 0
+    at the visible end and positive at the hidden end (:func:`_root_search`)."""
+    if not vis.items or not len(fl):
+        return
+    idx = np.flatnonzero(fl.open())
+    if not len(idx):
+        return
+    hid_end = np.where(fl.hlo[idx], fl.f[idx], fl.f[idx] + 1)
+    vis_end = np.where(fl.hlo[idx], fl.f[idx] + 1, fl.f[idx])
+    rows = np.concatenate([vis_end, hid_end])
+    m = vis.own_margin(s.xyz[rows], np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2), s.uv[rows])
+    fa, fb = np.split(m, 2)
+    good = (fa <= 0) & (fb > 0)  # NaN (no margin) fails both
+    idx, fa, fb = idx[good], fa[good], fb[good]
+    if not len(idx):
+        return
+    a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
+    b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
+
+    def margin(xyz: np.ndarray, k: np.ndarray, uv: np.ndarray) -> np.ndarray:
+        return vis.own_margin(xyz, fl.owner[idx[k]], fl.kind[idx[k]], uv)
+
+    _root_search(s, fl, vis, projector, idx, a, b, fa, fb, margin)
+
+
+def _root_search(
+    s: Samples,
+    fl: _Flips,
+    vis: Occlusion,
+    projector: Projector,
+    idx: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    fa: np.ndarray,
+    fb: np.ndarray,
+    margin: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray],
+) -> None:
+    """Brackets ``idx`` from their visible ends ``a`` (margin ``fa <= 0``) to
+    their hidden ends ``b`` (``fb > 0``) shrunk onto the root of a continuous
+    hiding margin (``margin(xyz, k, uv)`` at points ``xyz`` with parameters
+    ``uv`` of brackets ``idx[k]``):
+    safeguarded, a handful of steps instead of dozens.
+
+    Each step evaluates the margin at an estimate ``u`` and at ``u -+ h``; the
+    bracket shrinks to the sub-interval where it changes sign, and the next
+    estimate is the root of the parabola through the three values (Newton's
+    step when ``h`` is too small for a clean second difference), or the
+    secant of the bracket's ends when that root leaves the bracket, or the
+    bracket's middle when the last step did not halve it.  ``h``
+    follows the size of the last correction, so that once the estimates
+    converge the three points straddle the root and the bracket collapses
+    on both sides; at the end ``h`` is half the target width.  Results are
+    verified with the full visibility test; brackets that fail stay for
+    :func:`_k_section`."""
+    if not len(idx):
+        return
     # ``h`` is at least half the target width, and a clean second difference
     # needs it well above rounding (relative to the bracket's scale)
     scale = np.maximum(fl.span[idx], np.maximum(np.abs(a), np.abs(b)))
     h_min = 0.5 * tol.BISECTION_RTOL * scale
     h_quad = 1e-6 * scale
-    if s.ellipses is not None:
-        _closed_form(s, fl, vis, projector, idx, q, a, b)
     u = a + _secant(fa, fb) * (b - a)
     h = 1e-2 * np.abs(b - a)
     rows3 = np.array([-1.0, 0.0, 1.0])
@@ -110,15 +170,19 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
         g = np.flatnonzero(fl.open(idx, np.minimum(a, b), np.maximum(a, b)))
         if not len(g):
             break
-        ag, bg, ug = a[g], b[g], u[g]
+        ag, bg = a[g], b[g]
+        width = np.abs(bg - ag)
+        # an estimate within half the target width of an end (a root there,
+        # met by a margin at rounding level) moves that far inside, so that
+        # the three points straddle it at the target width
+        ug = np.clip(u[g], np.minimum(ag, bg) + h_min[g], np.maximum(ag, bg) - h_min[g])
         sgn = np.sign(bg - ag)  # from the visible end toward the hidden end
         room = np.minimum(np.abs(ug - ag), np.abs(bg - ug))  # keep the three points inside
         hg = np.minimum(np.maximum(h[g], h_min[g]), room)
         tt = ug[:, None] + (sgn * hg)[:, None] * rows3
         ig = idx[g]
-        xyz, _, _ = s.evaluate(np.repeat(fl.cid[ig], 3), tt.ravel(), None)
-        m = vis.margin(xyz, np.repeat(q[g], 3), np.repeat(fl.owner[ig], 3),
-                       np.repeat(fl.kind[ig], 3)).reshape(-1, 3)  # fmt: skip
+        xyz, uv, _ = s.evaluate(np.repeat(fl.cid[ig], 3), tt.ravel(), None)
+        m = margin(xyz, np.repeat(g, 3), uv).reshape(-1, 3)
         hid = m > 0
         first = np.where(hid.any(axis=1), hid.argmax(axis=1), 3)  # first hidden point
         r = np.arange(len(g))
@@ -136,16 +200,42 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
             ag, bg = a[g], b[g]
             inside = (nxt - ag) * (nxt - bg) < 0
             fallback = ag + _secant(fa[g], fb[g]) * (bg - ag)
-        u[g] = np.where(inside, nxt, fallback)
-        h[g] = np.where(inside, 1e-4 * np.abs(step), 1e-2 * np.abs(bg - ag))
-    # verify with the full test; accepted brackets replace the originals
-    xyz, _, xy = s.evaluate(np.tile(fl.cid[idx], 2), np.concatenate([a, b]), projector)
-    hv = vis.hidden(xyz, xy, np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2))
-    n = len(idx)
-    ok = ~hv[:n] & hv[n:] & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b))
+            # a step that did not halve the bracket (the margin flat at rounding
+            # level near an end, where the secant stagnates): bisect next
+            slow = np.abs(bg - ag) > 0.5 * width
+        u[g] = np.where(slow, 0.5 * (ag + bg), np.where(inside, nxt, fallback))
+        h[g] = np.where(inside & ~slow, 1e-4 * np.abs(step), 1e-2 * np.abs(bg - ag))
+    # verify with the full test; accepted brackets replace the originals.  A
+    # bracket narrower than the target may end on a point whose margin is at
+    # rounding level (the full test may see its sign differently): those that
+    # fail are tried again widened to nearly the target width about their middle
+    ok = _verify(s, fl, vis, projector, idx, a, b)
+    bad = np.flatnonzero(~ok & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b)))
+    if len(bad):
+        mid, sgn = 0.5 * (a[bad] + b[bad]), np.sign(b[bad] - a[bad])
+        half = np.maximum(0.99 * h_min[bad], 0.5 * np.abs(b[bad] - a[bad]))
+        a[bad], b[bad] = mid - sgn * half, mid + sgn * half
+        ok[bad] = _verify(s, fl, vis, projector, idx[bad], a[bad], b[bad])
     sel, hl = idx[ok], fl.hlo[idx[ok]]
     fl.lo[sel] = np.where(hl, b[ok], a[ok])
     fl.hi[sel] = np.where(hl, a[ok], b[ok])
+
+
+def _verify(
+    s: Samples,
+    fl: _Flips,
+    vis: Occlusion,
+    projector: Projector,
+    idx: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+) -> np.ndarray:
+    """Which brackets ``idx`` are closed with ``a`` visible and ``b`` hidden
+    by the full visibility test."""
+    xyz, _, xy = s.evaluate(np.tile(fl.cid[idx], 2), np.concatenate([a, b]), projector)
+    hv = vis.hidden(xyz, xy, np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2))
+    n = len(idx)
+    return ~hv[:n] & hv[n:] & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b))
 
 
 def _contour_crossings(
@@ -321,6 +411,7 @@ def locate_flips(s: Samples, vis: Occlusion, projector: Projector) -> None:
     if not len(fl):
         return
     _margin_search(s, fl, vis, projector)
+    _own_margin_search(s, fl, vis, projector)
     _k_section(s, fl, vis, projector)
     # both ends of each bracket, in order, right after the flip's first sample
     t = np.column_stack([fl.lo, fl.hi]).ravel()

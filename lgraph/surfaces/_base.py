@@ -367,9 +367,7 @@ class Surface:
 
         return contour(self, projector)
 
-    def lines_of_curvature(
-        self, n1: int, n2: int, spacing: str = "complete"
-    ) -> list[CurveBatch]:
+    def lines_of_curvature(self, n1: int, n2: int, spacing: str = "complete") -> list[CurveBatch]:
         """``n1`` and ``n2`` lines of the two principal families.
 
         Default: numeric integration of the principal direction field (see
@@ -403,6 +401,27 @@ class Surface:
         from ._numeric import hits
 
         return hits(self, origins, directions, smax, own)
+
+    def visibility_margin(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray,
+        uv: np.ndarray | None = None,
+    ) -> np.ndarray | None:
+        """A continuous function of a point on this surface, positive exactly
+        where the surface hides it (the ray ``origins + s * directions``,
+        ``0 < s < smax``, meets the patch), or None when the class has none.
+
+        Optional: a surface that can give one (a closed convex surface: minus
+        the normal component of the ray) lets the renderer locate the flips it
+        causes on its own curves by root finding instead of repeated ray tests.
+        ``own`` as for :meth:`hits`; NaN for origins off the surface.  ``uv``
+        (optional, ``(n, 2)``): the origins' parameters, when the caller knows
+        them (NaN rows: unknown).
+        """
+        return None
 
     def describe(self) -> str:
         return repr(self)

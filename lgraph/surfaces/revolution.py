@@ -50,6 +50,7 @@ from typing import TYPE_CHECKING, Any
 import attrs
 import numpy as np
 
+from .._own import OFF
 from .._tolerance import FD_STEP_2
 from .._validate import count, interval, vector3
 from ..curves import _d1, _d2
@@ -391,10 +392,51 @@ class SurfaceOfRevolution(Surface):
         smax: np.ndarray,
         own: np.ndarray | None = None,
     ) -> np.ndarray:
-        """Exact ray test by reduction to the profile plane (module docstring)."""
+        """Exact ray test by reduction to the profile plane (module docstring).
+
+        On a certified convex closed surface (:attr:`convex`), the rays from its
+        own points are decided by the sign of the hiding margin instead
+        (:mod:`lgraph.surfaces._revolution_convex`)."""
         from ._revolution_hits import hits
 
-        return hits(self, origins, directions, smax, own)
+        if own is None or not self.convex:
+            return hits(self, origins, directions, smax, own)
+        own = np.asarray(own)
+        o = np.asarray(origins, dtype=float).reshape(-1, 3)
+        v = np.asarray(directions, dtype=float).reshape(-1, 3)
+        sm = np.broadcast_to(np.asarray(smax, dtype=float), (len(o),))
+        mine = own != OFF
+        if mine.all():
+            return self.visibility_margin(o, v, sm, own) > 0
+        out = np.zeros(len(o), bool)
+        out[mine] = self.visibility_margin(o[mine], v[mine], sm[mine], own[mine]) > 0
+        rest = ~mine
+        out[rest] = hits(self, o[rest], v[rest], sm[rest], own[rest])
+        return out
+
+    @property
+    def convex(self) -> bool:
+        """Whether the surface is the whole boundary of a convex solid, proved
+        by its profile's :attr:`~lgraph.surfaces.profiles.Profile.convex`
+        interval (poles at both ends of ``t_range``, a full turn)."""
+        from ._revolution_convex import convex_sign
+
+        return convex_sign(self) != 0
+
+    def visibility_margin(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray,
+        uv: np.ndarray | None = None,
+    ) -> np.ndarray | None:
+        """``-N . v / |v|`` on a certified convex surface (:attr:`convex`), else None."""
+        if not self.convex:
+            return None
+        from ._revolution_convex import margin
+
+        return margin(self, origins, directions, smax, own, uv)
 
 
 def revolution_from_profile(
