@@ -2,12 +2,13 @@
 
 Where an exact ellipse (a parameter line of an ellipsoid) crosses its own
 ellipsoid's contour, the flip is in closed form; other flips caused by an
-ellipsoid, and flips on the curves of a surface that offers a hiding margin
-for its own points (:meth:`~lgraph.surfaces.Surface.visibility_margin`, e.g.
-a closed convex surface of revolution), are found by a safeguarded parabola
-search on that continuous margin (about three steps); the rest by K-section
-on the exact visibility test.  Every result is verified by the full test, and both ends of every
-located flip are inserted into the samples.  Before refinement,
+ellipsoid, and flips on the curves of a surface that offers transition
+functions for its own points (:meth:`~lgraph.surfaces.Surface.visibility_margins`,
+e.g. a surface of revolution: its contour, its rims), are found by a
+safeguarded parabola search on a continuous margin (about three steps); the
+rest by K-section on the exact visibility test.  Every result is verified
+by the full test, and both ends of every located flip are inserted into the
+samples.  Before refinement,
 ``seed_crossings`` puts samples on both sides of the crossings of exact
 ellipses that fall between two samples of one state.
 """
@@ -100,31 +101,42 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
 
 
 def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
-    """Flips on curves of a surface that offers a hiding margin for its own
-    points (:meth:`~lgraph.surfaces.Surface.visibility_margin`, e.g. a closed
-    convex surface of revolution): root finding on it where it is at most 0
-    at the visible end and positive at the hidden end (:func:`_root_search`)."""
+    """Flips on curves of a surface that offers transition functions for its
+    own points (:meth:`~lgraph.surfaces.Surface.visibility_margins`: for a
+    surface of revolution, the normal component of the ray and how far the
+    ray passes from its rims): each function in turn, for the flips still
+    open across which it changes sign, is turned into a margin (positive at
+    the hidden end) and its root found (:func:`_root_search`)."""
     if not vis.items or not len(fl):
         return
-    idx = np.flatnonzero(fl.open())
-    if not len(idx):
-        return
-    hid_end = np.where(fl.hlo[idx], fl.f[idx], fl.f[idx] + 1)
-    vis_end = np.where(fl.hlo[idx], fl.f[idx] + 1, fl.f[idx])
-    rows = np.concatenate([vis_end, hid_end])
-    m = vis.own_margin(s.xyz[rows], np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2), s.uv[rows])
-    fa, fb = np.split(m, 2)
-    good = (fa <= 0) & (fb > 0)  # NaN (no margin) fails both
-    idx, fa, fb = idx[good], fa[good], fb[good]
-    if not len(idx):
-        return
-    a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
-    b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
+    for i in range(8):  # a surface gives a few functions
+        idx = np.flatnonzero(fl.open())
+        if not len(idx):
+            return
+        hid_end = np.where(fl.hlo[idx], fl.f[idx], fl.f[idx] + 1)
+        vis_end = np.where(fl.hlo[idx], fl.f[idx] + 1, fl.f[idx])
+        rows = np.concatenate([vis_end, hid_end])
+        m = vis.own_margins(
+            s.xyz[rows], np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2), s.uv[rows]
+        )
+        if i >= len(m):
+            return
+        ga, gb = np.split(m[i], 2)
+        good = ga * gb < 0  # a strict sign change (NaN: no such function)
+        idx, ga, gb = idx[good], ga[good], gb[good]
+        if not len(idx):
+            continue
+        orient = np.sign(gb)  # the margin is positive at the hidden end
+        a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
+        b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
 
-    def margin(xyz: np.ndarray, k: np.ndarray, uv: np.ndarray) -> np.ndarray:
-        return vis.own_margin(xyz, fl.owner[idx[k]], fl.kind[idx[k]], uv)
+        def margin(
+            xyz: np.ndarray, k: np.ndarray, uv: np.ndarray, i: int = i, idx: np.ndarray = idx,
+            orient: np.ndarray = orient,
+        ) -> np.ndarray:  # fmt: skip
+            return orient[k] * vis.own_margins(xyz, fl.owner[idx[k]], fl.kind[idx[k]], uv)[i]
 
-    _root_search(s, fl, vis, projector, idx, a, b, fa, fb, margin)
+        _root_search(s, fl, vis, projector, idx, a, b, orient * ga, orient * gb, margin)
 
 
 def _root_search(

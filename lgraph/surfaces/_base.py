@@ -402,7 +402,7 @@ class Surface:
 
         return hits(self, origins, directions, smax, own)
 
-    def visibility_margin(
+    def visibility_margins(
         self,
         origins: np.ndarray,
         directions: np.ndarray,
@@ -410,16 +410,18 @@ class Surface:
         own: np.ndarray,
         uv: np.ndarray | None = None,
     ) -> np.ndarray | None:
-        """A continuous function of a point on this surface, positive exactly
-        where the surface hides it (the ray ``origins + s * directions``,
-        ``0 < s < smax``, meets the patch), or None when the class has none.
+        """Continuous functions of a point on this surface whose sign changes
+        mark where the surface may start or stop hiding it, or None (default).
 
-        Optional: a surface that can give one (a closed convex surface: minus
-        the normal component of the ray) lets the renderer locate the flips it
-        causes on its own curves by root finding instead of repeated ray tests.
-        ``own`` as for :meth:`hits`; NaN for origins off the surface.  ``uv``
-        (optional, ``(n, 2)``): the origins' parameters, when the caller knows
-        them (NaN rows: unknown).
+        Optional: ``(k, n)`` values, NaN where a function does not apply; for
+        example minus the normal component of the ray (zero where the point
+        crosses the surface's own contour), or how far the ray passes from a
+        boundary curve.  The renderer locates a visibility flip of this
+        surface's curves by root finding on the first function that changes
+        sign across it (instead of repeated ray tests), and verifies every
+        result with :meth:`hits`; flips of other kinds are found by bisection.
+        ``own`` as for :meth:`hits`; ``uv`` (optional, ``(n, 2)``): the
+        origins' parameters, when the caller knows them (NaN rows: unknown).
         """
         return None
 

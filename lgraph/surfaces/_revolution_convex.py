@@ -104,11 +104,17 @@ def _eye_inside(surface: SurfaceOfRevolution, ends: np.ndarray) -> np.ndarray:
     """Which points ``ends`` lie inside the convex solid (bisection for the
     radius at their height; only points inside the bounding cylinder)."""
     g = surface._grid
-    h, r = _meridian(surface, ends)
+    out = np.zeros(len(ends), bool)
+    if "reach2" not in g:  # the solid lies in the ball of this squared radius
+        g["reach2"] = 1.01 * float(np.max(g["rho"] ** 2 + g["z"] ** 2)) + 1e-300
+    near = np.flatnonzero(np.einsum("ij,ij->i", ends, ends) <= g["reach2"])
+    if not len(near):
+        return out
+    h, r = _meridian(surface, ends[near])
     z = g["z"]
     zlo, zhi = min(z[0], z[-1]), max(z[0], z[-1])
-    out = np.zeros(len(ends), bool)
-    cand = np.flatnonzero((h > zlo) & (h < zhi) & (r < g["rho"].max()))
+    keep = (h > zlo) & (h < zhi) & (r < g["rho"].max())
+    cand, h, r = near[keep], h[keep], r[keep]
     if not len(cand):
         return out
     lo = np.full(len(cand), surface.t_range[0])
@@ -116,10 +122,10 @@ def _eye_inside(surface: SurfaceOfRevolution, ends: np.ndarray) -> np.ndarray:
     up = z[-1] > z[0]
     for _ in range(64):  # z(t) monotone: bisection for z(t) = h
         mid = 0.5 * (lo + hi)
-        above = (surface.rz(mid)[1] > h[cand]) == up
+        above = (surface.rz(mid)[1] > h) == up
         hi = np.where(above, mid, hi)
         lo = np.where(above, lo, mid)
-    out[cand] = r[cand] < surface.rz(0.5 * (lo + hi))[0]
+    out[cand] = r < surface.rz(0.5 * (lo + hi))[0]
     return out
 
 

@@ -36,6 +36,7 @@ import numpy as np
 
 from .._own import CONTOUR, ON
 from .._tolerance import SELF_HIT_RTOL
+from ._revolution_margins import near_own_hits
 
 if TYPE_CHECKING:
     from .revolution import SurfaceOfRevolution
@@ -122,6 +123,11 @@ def hits(
     rtol = np.where(own == CONTOUR, CONTOUR_SELF_RTOL, SELF_HIT_RTOL)
     rtol = np.where((own == ON) & flat, FLAT_RTOL, rtol)
     eps = rtol * size
+    on = np.flatnonzero(own == ON)
+    if len(on):  # second roots near the point's own (at its contour): local analysis
+        cut = CONTOUR_SELF_RTOL * size
+        out[on], decided = near_own_hits(surface, o[on], vh[on], cut)
+        eps[on[decided]] = np.maximum(eps[on[decided]], cut)
     blk = _blocks(surface)
     nb = len(blk["j0"])
     step = max(1, CHUNK // nb)
@@ -296,6 +302,11 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
         [np.ones(len(cells[0][0]), bool)] + [np.zeros(len(x[0]), bool) for x in cells[1:]]
     )[live]
     sa, sb = node & (np.abs(fa0) <= ftol), node & (np.abs(fb0) <= ftol)
+    if not g["closed"]:
+        # at a rim only a sign change counts: the flip where a ray passes the rim
+        # is then exactly where F at the end changes sign (no touching band)
+        sa &= ta != t_all[0]
+        sb &= tb != t_all[-1]
     turn = (
         ~chg
         & ~sa

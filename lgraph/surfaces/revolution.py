@@ -401,15 +401,17 @@ class SurfaceOfRevolution(Surface):
 
         if own is None or not self.convex:
             return hits(self, origins, directions, smax, own)
+        from ._revolution_convex import margin
+
         own = np.asarray(own)
         o = np.asarray(origins, dtype=float).reshape(-1, 3)
         v = np.asarray(directions, dtype=float).reshape(-1, 3)
         sm = np.broadcast_to(np.asarray(smax, dtype=float), (len(o),))
         mine = own != OFF
         if mine.all():
-            return self.visibility_margin(o, v, sm, own) > 0
+            return margin(self, o, v, sm, own) > 0
         out = np.zeros(len(o), bool)
-        out[mine] = self.visibility_margin(o[mine], v[mine], sm[mine], own[mine]) > 0
+        out[mine] = margin(self, o[mine], v[mine], sm[mine], own[mine]) > 0
         rest = ~mine
         out[rest] = hits(self, o[rest], v[rest], sm[rest], own[rest])
         return out
@@ -423,7 +425,7 @@ class SurfaceOfRevolution(Surface):
 
         return convex_sign(self) != 0
 
-    def visibility_margin(
+    def visibility_margins(
         self,
         origins: np.ndarray,
         directions: np.ndarray,
@@ -431,12 +433,11 @@ class SurfaceOfRevolution(Surface):
         own: np.ndarray,
         uv: np.ndarray | None = None,
     ) -> np.ndarray | None:
-        """``-N . v / |v|`` on a certified convex surface (:attr:`convex`), else None."""
-        if not self.convex:
-            return None
-        from ._revolution_convex import margin
+        """Its contour (``N . v``) and rims as transition functions; a convex
+        surface's exact hiding margin (:mod:`lgraph.surfaces._revolution_margins`)."""
+        from ._revolution_margins import margins
 
-        return margin(self, origins, directions, smax, own, uv)
+        return margins(self, origins, directions, smax, own, uv)
 
 
 def revolution_from_profile(

@@ -1,0 +1,154 @@
+"""Transition functions of a surface of revolution for the renderer's flip search.
+
+Along a curve on the surface, the surface starts or stops hiding the curve's
+point ``x`` (ray ``x + s v`` toward the viewer) where
+
+* ``x`` crosses the surface's own contour: ``N(x) . v = 0``; on a certified
+  convex closed surface this is the only way, and ``-N . v`` is positive
+  exactly where the point is hidden (:mod:`lgraph.surfaces._revolution_convex`);
+* the ray passes through a rim, the boundary parallel ``t_e`` (not a pole):
+  the line meets that circle exactly when
+  ``F_e = c^2 (rho_e^2 - d^2) - k^2 (z_e - h*)^2 = 0`` (``c = v . a``,
+  ``k^2 = 1 - c^2``, ``d`` the line's distance from the axis and ``h*`` the
+  height where it comes closest; the ray function of
+  :mod:`lgraph.surfaces._revolution_hits` at ``t_e``), smooth in ``x``;
+* the ray grazes the surface elsewhere (not supplied: such flips are
+  bisected on the full test).
+
+:meth:`SurfaceOfRevolution.visibility_margins` returns these functions; the
+renderer root-finds the one that changes sign across a flip and verifies the
+result with the full ray test (docs/mathematics.rst, "Surfaces of
+revolution").
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .._own import CONTOUR, OFF
+from ._revolution_convex import convex_sign, margin
+
+if TYPE_CHECKING:
+    from .revolution import SurfaceOfRevolution
+
+__all__ = ["margins", "normal_component", "rim_function"]
+
+
+def normal_component(
+    surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray, t: np.ndarray
+) -> np.ndarray:
+    """``N . v / |v|`` at points ``o`` with parameter ``t`` (``N = (z' r - rho' a)
+    / |P'|``, ``r`` the radial unit vector; any unit vector at the axis, where
+    ``z' = 0``)."""
+    a = surface.frame[2]
+    h = o @ a
+    radial = o - h[:, None] * a
+    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
+    rv = np.einsum("ij,ij->i", radial, v)
+    np.divide(rv, r, out=rv, where=r > 0)
+    dr, dz = surface.drz(t)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return (dz * rv - dr * (v @ a)) / (np.hypot(dr, dz) * np.sqrt(np.einsum("ij,ij->i", v, v)))
+
+
+def rim_function(
+    surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray, t_e: float
+) -> np.ndarray:
+    """``F_e / size^2`` (module docstring): zero where the line ``o + s v``
+    meets the parallel ``t_e``."""
+    a = surface.frame[2]
+    vh = v / np.sqrt(np.einsum("ij,ij->i", v, v))[:, None]
+    oa, c = o @ a, vh @ a
+    op = o - oa[:, None] * a
+    vp = vh - c[:, None] * a
+    k2 = np.einsum("ij,ij->i", vp, vp)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sstar = np.where(k2 > 1e-300, -np.einsum("ij,ij->i", op, vp) / k2, 0.0)
+    q = op + sstar[:, None] * vp
+    d2 = np.einsum("ij,ij->i", q, q)
+    hstar = oa + c * sstar
+    rho_e, z_e = (float(x[0]) for x in surface.rz(np.array([t_e])))
+    f = c * c * (rho_e * rho_e - d2) - k2 * (z_e - hstar) ** 2
+    return f / surface.size**2
+
+
+def margins(
+    surface: SurfaceOfRevolution,
+    origins: np.ndarray,
+    directions: np.ndarray,
+    smax: np.ndarray,
+    own: np.ndarray,
+    uv: np.ndarray | None = None,
+) -> np.ndarray:
+    """The transition functions, ``(k, n)``: on a certified convex surface its
+    exact hiding margin alone; otherwise ``N . v / |v|`` (NaN where ``uv`` is
+    unknown and on contour curves) and one rim function per boundary
+    parallel that is not a pole."""
+    o = np.asarray(origins, float).reshape(-1, 3)
+    v = np.asarray(directions, float).reshape(-1, 3)
+    own = np.asarray(own)
+    if convex_sign(surface):
+        return margin(surface, o, v, smax, own, uv)[None]
+    rows = []
+    nv = np.full(len(o), np.nan)
+    if uv is not None:
+        t = np.asarray(uv, float).reshape(-1, 2)[:, 0]
+        on = np.flatnonzero((own != OFF) & (own != CONTOUR) & np.isfinite(t))
+        if len(on):
+            nv[on] = normal_component(surface, o[on], v[on], t[on])
+    rows.append(nv)
+    if not surface.profile_closed:
+        for end, pole in zip(surface.t_range, surface.poles):
+            if not pole:
+                rows.append(rim_function(surface, o, v, end))
+    return np.stack(rows)
+
+
+def near_own_hits(
+    surface: SurfaceOfRevolution, o: np.ndarray, vh: np.ndarray, eps: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Rays from points ``o`` on the surface (unit directions ``vh``) that meet
+    it again at ``0 < lam <= eps``, where the ray test cannot tell the second
+    root from the point's own (near the contour the two roots of the ray
+    function merge, and a near-double root is found to about the square root
+    of the rounding level only), and which points were decided (the second
+    output): near the point the surface lies at
+    ``II(xi, xi) / 2`` above the tangent plane and the ray at ``lam N . v``, so
+    the second root is ``lam2 = 2 N . v / II(v, v)`` with
+    ``II(v, v) = k_m (v . e_m)^2 + k_p (v . e_p)^2`` (meridian and parallel
+    curvatures ``k_m = (z' rho'' - rho' z'') / |P'|^3``, ``k_p = -z' / (rho |P'|)``
+    for ``N = (z' r - rho' a) / |P'|``).  With it a flip at the point's own
+    contour lies exactly where ``N . v = 0``.  Profiles whose heights are not
+    monotone on the grid, and points whose parameter is not recovered to
+    ``1e-9`` of the size, are left to the ray test (not decided)."""
+    from ._revolution_convex import t_of_points
+
+    out = np.zeros(len(o), bool)
+    g = surface._grid
+    dzs = np.diff(g["z"])
+    if not len(o) or not (np.all(dzs > 0) or np.all(dzs < 0)):
+        return out, out.copy()
+    a = surface.frame[2]
+    h = o @ a
+    radial = o - h[:, None] * a
+    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
+    t = t_of_points(surface, h, r)
+    rho, z = surface.rz(t)
+    found = np.hypot(rho - r, z - h) <= 1e-9 * surface.size
+    dr, dz = surface.drz(t)
+    ddr, ddz = surface.ddrz(t)
+    speed = np.hypot(dr, dz)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rhat = radial / r[:, None]
+        va = vh @ a
+        vr = np.einsum("ij,ij->i", rhat, vh)
+        vp = np.einsum("ij,ij->i", np.cross(a, rhat), vh)
+        nv = (dz * vr - dr * va) / speed
+        vm = (dr * vr + dz * va) / speed
+        k_m = (dz * ddr - dr * ddz) / speed**3
+        k_p = -dz / (rho * speed)
+        lam2 = 2 * nv / (k_m * vm * vm + k_p * vp * vp)
+    found &= r > 0
+    return found & (lam2 > 0) & (lam2 <= eps), found
