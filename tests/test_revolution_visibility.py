@@ -166,3 +166,36 @@ def test_parameter_of_a_point_is_recovered(surface):
     h = x @ a
     r = np.linalg.norm(x - h[:, None] * a, axis=1)
     assert np.abs(t_of_points(surface, h, r) - t).max() < 1e-12
+
+
+@pytest.mark.parametrize("name", ["vase", "pseudosphere"])
+def test_grazing_function_changes_sign_where_the_ray_test_does(name):
+    # a family of parallel lines swept across the surface's outline: the ray test
+    # changes its answer where a line touches the surface, and the transition
+    # function (positive where two roots exist) changes sign at the same place
+    surface = SURFACES[name]
+    z0 = 1.2 if name == "vase" else 0.6
+    v = np.array([[-1.0, 0.0, 0.05]])
+
+    def rays(y: np.ndarray) -> np.ndarray:
+        return np.column_stack([np.full(len(y), 5.0), y, np.full(len(y), z0)])
+
+    y = np.linspace(0, 2, 2001)
+    inf = np.full(len(y), np.inf)
+    hit = surface.hits(rays(y), np.repeat(v, len(y), 0), inf)
+    k = np.flatnonzero(hit[1:] != hit[:-1])
+    assert len(k) >= 1
+    lo, hi = y[k[-1]], y[k[-1] + 1]  # the outermost touching
+    h_lo = hit[k[-1]]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if surface.hits(rays(np.array([mid])), v, np.array([np.inf]))[0] == h_lo:
+            lo = mid
+        else:
+            hi = mid
+    off = np.zeros(2, np.int8)
+    g = _revolution_hits.grazing(
+        surface, rays(np.array([lo, hi])), np.repeat(v, 2, 0), np.full(2, np.inf), off
+    )
+    assert hi - lo < 1e-13
+    assert (g[0] > 0) == h_lo and (g[1] > 0) != h_lo

@@ -161,8 +161,8 @@ def _root_search(
     bracket shrinks to the sub-interval where it changes sign, and the next
     estimate is the root of the parabola through the three values (Newton's
     step when ``h`` is too small for a clean second difference), or the
-    secant of the bracket's ends when that root leaves the bracket, or the
-    bracket's middle when the last step did not halve it.  ``h``
+    secant of the bracket's ends when that root leaves the bracket (its
+    middle when the last step did not halve the bracket).  ``h``
     follows the size of the last correction, so that once the estimates
     converge the three points straddle the root and the bracket collapses
     on both sides; at the end ``h`` is half the target width.  Results are
@@ -212,9 +212,10 @@ def _root_search(
             ag, bg = a[g], b[g]
             inside = (nxt - ag) * (nxt - bg) < 0
             fallback = ag + _secant(fa[g], fb[g]) * (bg - ag)
-            # a step that did not halve the bracket (the margin flat at rounding
-            # level near an end, where the secant stagnates): bisect next
-            slow = np.abs(bg - ag) > 0.5 * width
+            # the secant after a step that did not halve the bracket (the margin
+            # flat at rounding level near an end, where the secant stagnates):
+            # bisect instead
+            slow = ~inside & (np.abs(bg - ag) > 0.5 * width)
         u[g] = np.where(slow, 0.5 * (ag + bg), np.where(inside, nxt, fallback))
         h[g] = np.where(inside & ~slow, 1e-4 * np.abs(step), 1e-2 * np.abs(bg - ag))
     # verify with the full test; accepted brackets replace the originals.  A

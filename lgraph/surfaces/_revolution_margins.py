@@ -29,28 +29,13 @@ import numpy as np
 
 from .._own import CONTOUR, OFF
 from ._revolution_convex import convex_sign, margin
+from ._revolution_hits import grazing
+from ._revolution_local import normal_component
 
 if TYPE_CHECKING:
     from .revolution import SurfaceOfRevolution
 
-__all__ = ["margins", "normal_component", "rim_function"]
-
-
-def normal_component(
-    surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray, t: np.ndarray
-) -> np.ndarray:
-    """``N . v / |v|`` at points ``o`` with parameter ``t`` (``N = (z' r - rho' a)
-    / |P'|``, ``r`` the radial unit vector; any unit vector at the axis, where
-    ``z' = 0``)."""
-    a = surface.frame[2]
-    h = o @ a
-    radial = o - h[:, None] * a
-    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
-    rv = np.einsum("ij,ij->i", radial, v)
-    np.divide(rv, r, out=rv, where=r > 0)
-    dr, dz = surface.drz(t)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return (dz * rv - dr * (v @ a)) / (np.hypot(dr, dz) * np.sqrt(np.einsum("ij,ij->i", v, v)))
+__all__ = ["margins", "rim_function"]
 
 
 def rim_function(
@@ -103,52 +88,5 @@ def margins(
         for end, pole in zip(surface.t_range, surface.poles):
             if not pole:
                 rows.append(rim_function(surface, o, v, end))
+    rows.append(grazing(surface, o, v, smax, own))
     return np.stack(rows)
-
-
-def near_own_hits(
-    surface: SurfaceOfRevolution, o: np.ndarray, vh: np.ndarray, eps: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """Rays from points ``o`` on the surface (unit directions ``vh``) that meet
-    it again at ``0 < lam <= eps``, where the ray test cannot tell the second
-    root from the point's own (near the contour the two roots of the ray
-    function merge, and a near-double root is found to about the square root
-    of the rounding level only), and which points were decided (the second
-    output): near the point the surface lies at
-    ``II(xi, xi) / 2`` above the tangent plane and the ray at ``lam N . v``, so
-    the second root is ``lam2 = 2 N . v / II(v, v)`` with
-    ``II(v, v) = k_m (v . e_m)^2 + k_p (v . e_p)^2`` (meridian and parallel
-    curvatures ``k_m = (z' rho'' - rho' z'') / |P'|^3``, ``k_p = -z' / (rho |P'|)``
-    for ``N = (z' r - rho' a) / |P'|``).  With it a flip at the point's own
-    contour lies exactly where ``N . v = 0``.  Profiles whose heights are not
-    monotone on the grid, and points whose parameter is not recovered to
-    ``1e-9`` of the size, are left to the ray test (not decided)."""
-    from ._revolution_convex import t_of_points
-
-    out = np.zeros(len(o), bool)
-    g = surface._grid
-    dzs = np.diff(g["z"])
-    if not len(o) or not (np.all(dzs > 0) or np.all(dzs < 0)):
-        return out, out.copy()
-    a = surface.frame[2]
-    h = o @ a
-    radial = o - h[:, None] * a
-    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
-    t = t_of_points(surface, h, r)
-    rho, z = surface.rz(t)
-    found = np.hypot(rho - r, z - h) <= 1e-9 * surface.size
-    dr, dz = surface.drz(t)
-    ddr, ddz = surface.ddrz(t)
-    speed = np.hypot(dr, dz)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        rhat = radial / r[:, None]
-        va = vh @ a
-        vr = np.einsum("ij,ij->i", rhat, vh)
-        vp = np.einsum("ij,ij->i", np.cross(a, rhat), vh)
-        nv = (dz * vr - dr * va) / speed
-        vm = (dr * vr + dz * va) / speed
-        k_m = (dz * ddr - dr * ddz) / speed**3
-        k_p = -dz / (rho * speed)
-        lam2 = 2 * nv / (k_m * vm * vm + k_p * vp * vp)
-    found &= r > 0
-    return found & (lam2 > 0) & (lam2 <= eps), found
