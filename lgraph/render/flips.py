@@ -3,7 +3,7 @@
 Where an exact ellipse (a parameter line of an ellipsoid) crosses its own
 ellipsoid's contour, the flip is in closed form; other flips caused by an
 ellipsoid, and flips on the curves of a surface that offers transition
-functions for its own points (:meth:`~lgraph.surfaces.Surface.visibility_margins`,
+functions for its own points (:meth:`~lgraph.Surface.visibility_margins`,
 e.g. a surface of revolution: its contour, its rims), are found by a
 safeguarded parabola search on a continuous margin (about three steps); the
 rest by K-section on the exact visibility test.  Every result is verified
@@ -102,7 +102,7 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
 
 def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
     """Flips on curves of a surface that offers transition functions for its
-    own points (:meth:`~lgraph.surfaces.Surface.visibility_margins`: for a
+    own points (:meth:`~lgraph.Surface.visibility_margins`: for a
     surface of revolution, the normal component of the ray and how far the
     ray passes from its rims): each function in turn, for the flips still
     open across which it changes sign, is turned into a margin (positive at

@@ -252,7 +252,7 @@ class Occlusion:
         self, xyz: np.ndarray, owner: np.ndarray, kind: np.ndarray, uv: np.ndarray | None = None
     ) -> np.ndarray:
         """For points on a surface asked one by one, that surface's transition
-        functions (:meth:`~lgraph.surfaces.Surface.visibility_margins`), ``(k,
+        functions (:meth:`~lgraph.Surface.visibility_margins`), ``(k,
         n)`` padded with NaN; ``k = 0`` when no surface has any.  They speak
         for the point's own surface only, not for the rest of the scene.
         ``uv``: the points' parameters on their own surface, when known."""

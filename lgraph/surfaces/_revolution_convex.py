@@ -1,6 +1,6 @@
 """Self-visibility on a closed convex surface of revolution, without ray tests.
 
-A profile may *declare* (:attr:`~lgraph.surfaces.profiles.Profile.convex`) an
+A profile may *declare* (``Profile.convex``) an
 interval of ``t`` on which ``z`` is strictly monotone (``sigma = sign z'``) and
 ``sigma (rho' z'' - z' rho'') >= 0``.  Then the radius ``R(z) = rho(t(z))`` is
 concave in ``z`` (``R'' = (rho'' z' - rho' z'') / z'^3 <= 0``), so the solid

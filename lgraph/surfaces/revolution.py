@@ -419,7 +419,7 @@ class SurfaceOfRevolution(Surface):
     @property
     def convex(self) -> bool:
         """Whether the surface is the whole boundary of a convex solid, proved
-        by its profile's :attr:`~lgraph.surfaces.profiles.Profile.convex`
+        by its profile's ``Profile.convex``
         interval (poles at both ends of ``t_range``, a full turn)."""
         from ._revolution_convex import convex_sign
 
