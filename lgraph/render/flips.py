@@ -109,24 +109,25 @@ def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projec
     the hidden end) and its root found (:func:`_root_search`)."""
     if not vis.items or not len(fl):
         return
-    for i in range(8):  # a surface gives a few functions
-        idx = np.flatnonzero(fl.open())
-        if not len(idx):
-            return
-        hid_end = np.where(fl.hlo[idx], fl.f[idx], fl.f[idx] + 1)
-        vis_end = np.where(fl.hlo[idx], fl.f[idx] + 1, fl.f[idx])
-        rows = np.concatenate([vis_end, hid_end])
-        m = vis.own_margins(
-            s.xyz[rows], np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2), s.uv[rows]
-        )
-        if i >= len(m):
-            return
-        ga, gb = np.split(m[i], 2)
-        good = ga * gb < 0  # a strict sign change (NaN: no such function)
-        idx, ga, gb = idx[good], ga[good], gb[good]
+    idx0 = np.flatnonzero(fl.open())
+    if not len(idx0):
+        return
+    hid_end = np.where(fl.hlo[idx0], fl.f[idx0], fl.f[idx0] + 1)
+    vis_end = np.where(fl.hlo[idx0], fl.f[idx0] + 1, fl.f[idx0])
+    rows = np.concatenate([vis_end, hid_end])
+    ends = vis.own_margins(
+        s.xyz[rows], np.tile(fl.owner[idx0], 2), np.tile(fl.kind[idx0], 2), s.uv[rows]
+    )  # every function at both ends (brackets that stay open keep their ends)
+    for i in range(len(ends)):
+        still = fl.open(idx0)
+        ga, gb = np.split(ends[i], 2)
+        # a sign change (NaN: no such function), or a visible end on the transition
+        good = still & ((ga * gb < 0) | ((np.abs(ga) <= tol.TRANSITION_ZERO) & (gb != 0)))
+        idx, ga, gb = idx0[good], ga[good], gb[good]
         if not len(idx):
             continue
         orient = np.sign(gb)  # the margin is positive at the hidden end
+        ga = np.where(orient * ga > 0, 0.0, ga)
         a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
         b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
 
@@ -134,7 +135,8 @@ def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projec
             xyz: np.ndarray, k: np.ndarray, uv: np.ndarray, i: int = i, idx: np.ndarray = idx,
             orient: np.ndarray = orient,
         ) -> np.ndarray:  # fmt: skip
-            return orient[k] * vis.own_margins(xyz, fl.owner[idx[k]], fl.kind[idx[k]], uv)[i]
+            m = vis.own_margins(xyz, fl.owner[idx[k]], fl.kind[idx[k]], uv, which=i)
+            return orient[k] * m[0]
 
         _root_search(s, fl, vis, projector, idx, a, b, orient * ga, orient * gb, margin)
 

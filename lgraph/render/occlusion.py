@@ -249,13 +249,19 @@ class Occlusion:
         return out
 
     def own_margins(
-        self, xyz: np.ndarray, owner: np.ndarray, kind: np.ndarray, uv: np.ndarray | None = None
+        self,
+        xyz: np.ndarray,
+        owner: np.ndarray,
+        kind: np.ndarray,
+        uv: np.ndarray | None = None,
+        which: int | None = None,
     ) -> np.ndarray:
         """For points on a surface asked one by one, that surface's transition
         functions (:meth:`~lgraph.Surface.visibility_margins`), ``(k,
         n)`` padded with NaN; ``k = 0`` when no surface has any.  They speak
         for the point's own surface only, not for the rest of the scene.
-        ``uv``: the points' parameters on their own surface, when known."""
+        ``uv``: the points' parameters on their own surface, when known;
+        ``which``: only that function of each surface (one row)."""
         parts = []
         if len(xyz) and self.items:
             dirs, smax = self.projector.rays(xyz)
@@ -269,6 +275,7 @@ class Occlusion:
                     smax[idx],
                     kind[idx],
                     None if uv is None else uv[idx],
+                    which,
                 )
                 if m is not None:
                     parts.append((idx, np.asarray(m, float).reshape(-1, len(idx))))

@@ -409,11 +409,13 @@ class Surface:
         smax: np.ndarray,
         own: np.ndarray,
         uv: np.ndarray | None = None,
+        which: int | None = None,
     ) -> np.ndarray | None:
         """Continuous functions of a point on this surface whose sign changes
         mark where the surface may start or stop hiding it, or None (default).
 
-        Optional: ``(k, n)`` values, NaN where a function does not apply; for
+        Optional: ``(k, n)`` values of order 1 (dimensionless), NaN where a
+        function does not apply; for
         example minus the normal component of the ray (zero where the point
         crosses the surface's own contour), or how far the ray passes from a
         boundary curve.  The renderer locates a visibility flip of this
@@ -421,7 +423,8 @@ class Surface:
         sign across it (instead of repeated ray tests), and verifies every
         result with :meth:`hits`; flips of other kinds are found by bisection.
         ``own`` as for :meth:`hits`; ``uv`` (optional, ``(n, 2)``): the
-        origins' parameters, when the caller knows them (NaN rows: unknown).
+        origins' parameters, when the caller knows them (NaN rows: unknown);
+        ``which``: only that function (a ``(1, n)`` result).
         """
         return None
 

@@ -66,27 +66,35 @@ def margins(
     smax: np.ndarray,
     own: np.ndarray,
     uv: np.ndarray | None = None,
+    which: int | None = None,
 ) -> np.ndarray:
-    """The transition functions, ``(k, n)``: on a certified convex surface its
-    exact hiding margin alone; otherwise ``N . v / |v|`` (NaN where ``uv`` is
-    unknown and on contour curves) and one rim function per boundary
-    parallel that is not a pole."""
+    """The transition functions, ``(k, n)`` (only row ``which`` when given): on
+    a certified convex surface its exact hiding margin alone; otherwise
+    ``N . v / |v|`` (NaN where ``uv`` is unknown and on contour curves), one
+    rim function per boundary parallel that is not a pole, and the grazing
+    function (:func:`~lgraph.surfaces._revolution_hits.grazing`)."""
     o = np.asarray(origins, float).reshape(-1, 3)
     v = np.asarray(directions, float).reshape(-1, 3)
     own = np.asarray(own)
     if convex_sign(surface):
         return margin(surface, o, v, smax, own, uv)[None]
-    rows = []
-    nv = np.full(len(o), np.nan)
-    if uv is not None:
-        t = np.asarray(uv, float).reshape(-1, 2)[:, 0]
-        on = np.flatnonzero((own != OFF) & (own != CONTOUR) & np.isfinite(t))
-        if len(on):
-            nv[on] = normal_component(surface, o[on], v[on], t[on])
-    rows.append(nv)
-    if not surface.profile_closed:
-        for end, pole in zip(surface.t_range, surface.poles):
-            if not pole:
-                rows.append(rim_function(surface, o, v, end))
-    rows.append(grazing(surface, o, v, smax, own))
-    return np.stack(rows)
+    rims = [] if surface.profile_closed else [
+        end for end, pole in zip(surface.t_range, surface.poles) if not pole
+    ]  # fmt: skip
+
+    def row(k: int) -> np.ndarray:
+        if k == 0:
+            nv = np.full(len(o), np.nan)
+            if uv is not None:
+                t = np.asarray(uv, float).reshape(-1, 2)[:, 0]
+                on = np.flatnonzero((own != OFF) & (own != CONTOUR) & np.isfinite(t))
+                if len(on):
+                    nv[on] = normal_component(surface, o[on], v[on], t[on])
+            return nv
+        if k <= len(rims):
+            return rim_function(surface, o, v, rims[k - 1])
+        return grazing(surface, o, v, smax, own)
+
+    if which is not None:
+        return row(which)[None]
+    return np.stack([row(k) for k in range(len(rims) + 2)])

@@ -432,12 +432,14 @@ class SurfaceOfRevolution(Surface):
         smax: np.ndarray,
         own: np.ndarray,
         uv: np.ndarray | None = None,
+        which: int | None = None,
     ) -> np.ndarray | None:
-        """Its contour (``N . v``) and rims as transition functions; a convex
-        surface's exact hiding margin (:mod:`lgraph.surfaces._revolution_margins`)."""
+        """Its contour (``N . v``), rims and grazing rays as transition functions;
+        a convex surface's exact hiding margin
+        (:mod:`lgraph.surfaces._revolution_margins`)."""
         from ._revolution_margins import margins
 
-        return margins(self, origins, directions, smax, own, uv)
+        return margins(self, origins, directions, smax, own, uv, which)
 
 
 def revolution_from_profile(
