@@ -8,6 +8,7 @@ Scenes (the projector of Figure 7.2: central, azimuth 35, elevation 25, distance
   egg:        SurfaceOfRevolution of the built-in egg profile, 12 parallels +
               24 meridians (its lines of curvature)
   pseudo:     the pseudosphere, 12 + 24 lines of curvature
+  vase:       the built-in vase (open at both ends, not convex), 12 + 24
   egg hidden: the egg again with hidden lines drawn (render option hidden_lines=True)
 
 The target of issue 16: the surface of revolution renders within twice the time of
@@ -40,6 +41,9 @@ def scenes() -> dict:
     s = lg.Scene()
     s.add(lg.Pseudosphere(1.0, 3.0), lg.LinesOfCurvature(12, 24))
     out["pseudosphere 12+24"] = (s, {})
+    s = lg.Scene()
+    s.add(lg.SurfaceOfRevolution("vase", (0, 3)), lg.LinesOfCurvature(12, 24))
+    out["vase 12+24"] = (s, {})
     out["egg 12+24, hidden lines"] = (out["egg 12+24"][0], {"hidden_lines": True})
     return out
 

@@ -199,3 +199,31 @@ def test_grazing_function_changes_sign_where_the_ray_test_does(name):
     )
     assert hi - lo < 1e-13
     assert (g[0] > 0) == h_lo and (g[1] > 0) != h_lo
+
+
+def test_the_ray_test_shortcut_has_the_sign_of_the_exact_margin():
+    # the ray test takes t from the height grid unless the margin there is within
+    # the cell's bound of zero; points near the contour must take the exact path
+    from lgraph.surfaces._revolution_convex import margin
+
+    p = PROJECTORS["central"]
+    central, wa, r0, psi0 = view_terms(EGG, p)
+    t = np.linspace(0.01, np.pi - 0.01, 400)
+    rho, z = EGG.rz(t)
+    dr, dz = EGG.drz(t)
+    c = dz * rho + dr * (wa - z)
+    with np.errstate(invalid="ignore"):
+        phi_c = psi0 + np.arccos(c / (dz * r0))
+    t, phi_c = t[np.isfinite(phi_c)], phi_c[np.isfinite(phi_c)]
+    rng = np.random.default_rng(4)
+    tt = np.concatenate([np.repeat(t, 4), rng.uniform(0, np.pi, 2000)])
+    phi = np.concatenate(
+        [(phi_c[:, None] + [-1e-9, -1e-12, 1e-12, 1e-9]).ravel(), rng.uniform(0, 7, 2000)]
+    )
+    x = EGG.point(tt, phi)
+    v, smax = p.rays(x)
+    own = np.full(len(x), ON, np.int8)
+    fast = margin(EGG, x, v, smax, own, exact=False)
+    exact = margin(EGG, x, v, smax, own, np.column_stack([tt, phi]))
+    assert np.array_equal(fast > 0, exact > 0)
+    assert (exact[: 4 * len(t)] > 0).sum() == 2 * len(t)  # both sides of the contour

@@ -66,21 +66,31 @@ def _meridian(surface: SurfaceOfRevolution, o: np.ndarray) -> tuple[np.ndarray, 
     return h, np.sqrt(np.einsum("ij,ij->i", radial, radial))
 
 
-def t_of_points(surface: SurfaceOfRevolution, h: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """The parameter ``t`` of points with meridian coordinates ``(r, h)`` on a
-    profile with monotone ``z``: the closest profile point, by Newton's method
-    on ``(P(t) - q) . P'(t) = 0`` from linear interpolation of the height grid
-    (Gauss-Newton: the residual ``P - q`` vanishes at the root, so the
-    ``(P - q) . P''`` term of the derivative is dropped without losing the
-    quadratic convergence)."""
+def _t_guess(surface: SurfaceOfRevolution, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Linear interpolation of ``t`` in the height grid (monotone ``z``), and
+    the grid cell (index into the grid's cells) each height falls in."""
     g = surface._grid
     t, z = g["t"], g["z"]
-    if z[-1] < z[0]:
+    up = z[-1] > z[0]
+    if not up:
         t, z = t[::-1], z[::-1]
     k = np.clip(np.searchsorted(z, h) - 1, 0, len(z) - 2)
     with np.errstate(invalid="ignore", divide="ignore"):
         f = np.clip((h - z[k]) / (z[k + 1] - z[k]), 0.0, 1.0)
     x = t[k] + np.nan_to_num(f) * (t[k + 1] - t[k])
+    return x, (k if up else len(z) - 2 - k)
+
+
+def t_of_points(
+    surface: SurfaceOfRevolution, h: np.ndarray, r: np.ndarray, x: np.ndarray | None = None
+) -> np.ndarray:
+    """The parameter ``t`` of points with meridian coordinates ``(r, h)`` on a
+    profile with monotone ``z``: the closest profile point, by Newton's method
+    on ``(P(t) - q) . P'(t) = 0`` from linear interpolation of the height grid
+    (or from ``x``; Gauss-Newton: the residual ``P - q`` vanishes at the root,
+    so the ``(P - q) . P''`` term of the derivative is dropped without losing
+    the quadratic convergence)."""
+    x = _t_guess(surface, h)[0] if x is None else np.array(x, dtype=float)
     lo, hi = surface.t_range
     # a step this small leaves an error of its square: the last one needed
     last = 1e-8 * (hi - lo)
@@ -98,6 +108,21 @@ def t_of_points(surface: SurfaceOfRevolution, h: np.ndarray, r: np.ndarray) -> n
         if not len(idx):
             break
     return x
+
+
+def _normal_rate(surface: SurfaceOfRevolution) -> np.ndarray:
+    """Per grid cell, a bound on how much ``N . v`` (unit ``v``) can change
+    between two parameters in the cell: the largest turning rate of the
+    normal at its nodes, ``|rho' z'' - z' rho''| / |P'|^2``, times the cell's
+    width, with a factor 4 for the turning between the nodes (cached)."""
+    g = surface._grid
+    if "normal_rate" not in g:
+        ddr, ddz = surface.ddrz(g["t"])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            rate = np.abs(g["drho"] * ddz - g["dz"] * ddr) / (g["drho"] ** 2 + g["dz"] ** 2)
+        rate = np.nan_to_num(rate, nan=np.inf)
+        g["normal_rate"] = 4 * np.maximum(rate[:-1], rate[1:]) * np.diff(g["t"])
+    return g["normal_rate"]
 
 
 def _eye_inside(surface: SurfaceOfRevolution, ends: np.ndarray) -> np.ndarray:
@@ -136,11 +161,14 @@ def margin(
     smax: np.ndarray,
     own: np.ndarray,
     uv: np.ndarray | None = None,
+    exact: bool = True,
 ) -> np.ndarray:
     """Hiding margin of points on a certified convex surface: positive exactly
     where the surface hides its own point (``own`` ON); -1 for contour points
     and where the eye is inside the solid; NaN for points off the surface.
-    ``uv``: the points' parameters when known (else found from the points)."""
+    ``uv``: the points' parameters when known (else found from the points);
+    ``exact=False``: only the sign is wanted (the ray test), so points whose
+    sign is settled by their grid cell skip finding their exact ``t``."""
     sigma = convex_sign(surface)
     o = np.asarray(origins, float).reshape(-1, 3)
     v = np.asarray(directions, float).reshape(-1, 3)
@@ -156,18 +184,35 @@ def margin(
     h = o @ a
     radial = o - h[:, None] * a
     r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
-    t = np.full(len(on), np.nan) if uv is None else np.asarray(uv, float).reshape(-1, 2)[on, 0]
-    unknown = np.flatnonzero(~np.isfinite(t))
-    if len(unknown):
-        t[unknown] = t_of_points(surface, h[unknown], r[unknown])
-    dr, dz = surface.drz(t)
     # r^ . v, with r^ = radial / r (any unit vector at the axis, where z' = 0)
     rv = np.einsum("ij,ij->i", radial, v)
     np.divide(rv, r, out=rv, where=r > 0)
-    nv = dz * rv - dr * (v @ a)
-    scale = np.hypot(dr, dz) * np.sqrt(np.einsum("ij,ij->i", v, v))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        m = -sigma * nv / scale
+    va = v @ a
+    vn = np.sqrt(np.einsum("ij,ij->i", v, v))
+
+    def at(t: np.ndarray, sel: np.ndarray | slice) -> np.ndarray:
+        dr, dz = surface.drz(t)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return -sigma * (dz * rv[sel] - dr * va[sel]) / (np.hypot(dr, dz) * vn[sel])
+
+    if uv is not None:
+        t = np.asarray(uv, float).reshape(-1, 2)[on, 0]
+        m = at(t, slice(None))
+        unknown = np.flatnonzero(~np.isfinite(t))
+    elif exact:
+        t = _t_guess(surface, h)[0]
+        unknown = np.arange(len(t))
+        m = np.empty(len(t))
+    else:
+        # the grid cell of the height holds the point's t: where the margin at the
+        # interpolated t is farther from zero than its rate times the cell width,
+        # its sign is already right; only the others need t exactly
+        t, k = _t_guess(surface, h)
+        m = at(t, slice(None))
+        unknown = np.flatnonzero(np.abs(m) <= _normal_rate(surface)[k])
+    if len(unknown):
+        t[unknown] = t_of_points(surface, h[unknown], r[unknown], t[unknown])
+        m[unknown] = at(t[unknown], unknown)
     sm = np.broadcast_to(np.asarray(smax, float), (len(out),))[on]
     fin = np.flatnonzero(np.isfinite(sm))
     if len(fin):

@@ -409,9 +409,9 @@ class SurfaceOfRevolution(Surface):
         sm = np.broadcast_to(np.asarray(smax, dtype=float), (len(o),))
         mine = own != OFF
         if mine.all():
-            return margin(self, o, v, sm, own) > 0
+            return margin(self, o, v, sm, own, exact=False) > 0
         out = np.zeros(len(o), bool)
-        out[mine] = margin(self, o[mine], v[mine], sm[mine], own[mine]) > 0
+        out[mine] = margin(self, o[mine], v[mine], sm[mine], own[mine], exact=False) > 0
         rest = ~mine
         out[rest] = hits(self, o[rest], v[rest], sm[rest], own[rest])
         return out
