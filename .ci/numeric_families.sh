@@ -4,8 +4,11 @@
 # the lowest numpy and scipy that pyproject.toml declares.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# (and the shared root finder on scipy's elementwise find_root, issue 12: its users
+# are the ruled surfaces and the numeric contours)
 tests=(tests/test_field_lines.py tests/test_numeric_curvature.py tests/test_surface_curves.py
-       tests/test_parametric.py lgraph/families lgraph/curvature.py)
+       tests/test_parametric.py lgraph/families lgraph/curvature.py
+       tests/test_roots.py tests/test_ruled.py lgraph/_roots.py)
 
 features="$(python .ci/npy_dispatch.py)"
 echo "ci: numeric families with NPY_DISABLE_CPU_FEATURES='$features'"
@@ -32,9 +35,17 @@ venv="${TMPDIR:-/tmp}/lgraph-min-versions"
 echo "ci: numeric families with numpy==$np_min scipy==$sp_min (venv $venv)"
 rm -rf "$venv"
 python -m venv "$venv"
-if ! { timeout 900 "$venv/bin/python" -m pip install -q "numpy==$np_min.*" "scipy==$sp_min.*" \
-    && timeout 900 "$venv/bin/python" -m pip install -q -e ".[test]" "numpy==$np_min.*" "scipy==$sp_min.*"; }; then
-  echo "ci: error: could not install numpy $np_min / scipy $sp_min into $venv (package index unreachable, or no wheel for this Python)" >&2
+# each pip step: at most 15 minutes in all, 60 s per network request, 2 retries
+pip_min() { timeout 900 "$venv/bin/python" -m pip install -q --timeout 60 --retries 2 "$@"; }
+pins=("numpy==$np_min.*" "scipy==$sp_min.*")
+if ! pip_min "${pins[@]}"; then
+  echo "ci: error: could not install ${pins[*]} into $venv for $("$venv/bin/python" --version)" \
+       "(package index unreachable, pip timed out after 900 s, or no wheel for this Python)" >&2
+  exit 1
+fi
+if ! pip_min -e ".[test]" "${pins[@]}"; then
+  echo "ci: error: could not install lgraph[test] with ${pins[*]} into $venv" \
+       "(a test dependency needs newer numpy/scipy, the index is unreachable, or pip timed out)" >&2
   exit 1
 fi
 "$venv/bin/python" -c "import numpy, scipy; print('ci: min venv has numpy', numpy.__version__, 'scipy', scipy.__version__)"

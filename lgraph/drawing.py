@@ -1,7 +1,11 @@
-"""The backend-neutral display list: strokes, styles and page geometry.
+"""The backend-neutral display list: strokes, placed labels and the drawing.
 
-A :class:`Drawing` is plain data.  Backends (``lgraph.backends``) turn it into
-files; they know nothing about surfaces.
+A :class:`Drawing` is plain data: :class:`Stroke` polylines and
+:class:`PlacedLabel` texts in projection coordinates, plus a page.  Backends
+(``lgraph.backends``) turn it into files; they know nothing about surfaces.
+The page geometry (:class:`~lgraph.Page` and the map onto it) is in
+:mod:`lgraph.page`, dash patterns for backends in :mod:`lgraph.dashes`; both
+are importable from here as before.  No formula of docs/mathematics.rst.
 
 >>> import numpy as np
 >>> s = Stroke(xy=np.array([[0.0, 0.0], [1.0, 2.0]]), xyz=np.zeros((2, 3)))
@@ -17,7 +21,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, Any
 
@@ -25,7 +29,8 @@ import attrs
 import numpy as np
 
 from ._atomic import publish, removed_on_signals, temporary_beside
-from ._validate import finite_positive, nonnegative_finite
+from .dashes import MAX_DASHES, dash_polyline  # noqa: F401 - re-exported (plugins use it)
+from .page import Page, _page, page_layout
 from .style import ANCHORS, HIDDEN_STYLE, OUTLINE, Style, _color, _dash  # noqa: F401 - re-exported
 
 __all__ = ["Style", "Stroke", "PlacedLabel", "Page", "Drawing", "HIDDEN_STYLE"]
@@ -129,66 +134,6 @@ class PlacedLabel:
 LABEL_PAD = 0.25
 
 
-@attrs.frozen
-class Page:
-    """Page geometry in points (1/72 inch).
-
-    With ``width`` and ``height`` both None (the default) the page is cropped
-    to the figure: its longer side is ``extent`` points, plus ``margin`` on each
-    side.  With both given, the figure is fitted inside the margins and centred,
-    keeping its aspect ratio.
-    """
-
-    width: float | None = attrs.field(default=None)
-    height: float | None = attrs.field(default=None)
-    margin: float = attrs.field(default=18.0, validator=nonnegative_finite("Page"))
-    extent: float = attrs.field(default=500.0, validator=finite_positive("Page"))
-    #: crop to the figure, scaled so that the page is this wide (pt) ...
-    fit_width: float | None = attrs.field(default=None, kw_only=True)
-    #: ... and/or at most this high (pt); set by ``Drawing.save(width=, height=)``
-    fit_height: float | None = attrs.field(default=None, kw_only=True)
-
-    @width.validator
-    @height.validator
-    @fit_width.validator
-    @fit_height.validator
-    def _check_size(self, attribute: attrs.Attribute, value: float | None) -> None:
-        if value is not None:
-            finite_positive("Page")(self, attribute, value)
-
-    def __attrs_post_init__(self) -> None:
-        fit = self.fit_width is not None or self.fit_height is not None
-        if fit and self.width is not None:
-            raise ValueError("Page: fit_width/fit_height crop the page; give no width and height")
-        if (self.width is None) != (self.height is None):
-            raise ValueError("Page: give both width and height, or neither (crop to figure)")
-        if self.width is not None and min(self.width, self.height) <= 2 * self.margin:
-            raise ValueError(
-                f"Page: width and height must exceed twice the margin ({2 * self.margin} pt), "
-                f"got {self.width} x {self.height}"
-            )
-
-    @classmethod
-    def a4(cls, landscape: bool = False, margin: float = 36.0) -> Page:
-        """An A4 page (595.28 x 841.89 pt)."""
-        w, h = 595.2756, 841.8898
-        return cls(h, w, margin) if landscape else cls(w, h, margin)
-
-
-def _page(value: Any) -> Page:
-    if isinstance(value, Page):
-        return value
-    if value is None:
-        return Page()
-    try:
-        w, h = value
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"Drawing: page must be a Page or (width, height) in pt, got {value!r}"
-        ) from None
-    return Page(float(w), float(h))
-
-
 def _window(value: Any) -> tuple[float, float, float, float] | None:
     if value is None:
         return None
@@ -242,39 +187,8 @@ class Drawing:
         """Scale, offset and page size mapping projection coords to page points
         (computed once: a drawing never changes)."""
         if "layout" not in self._cache:
-            self._cache["layout"] = self._compute_layout()
+            self._cache["layout"] = page_layout(self)
         return self._cache["layout"]
-
-    def _compute_layout(self) -> tuple[float, np.ndarray, float, float]:
-        x0, y0, x1, y1 = self.bounds() if self.window is None else self.window
-        w, h = max(x1 - x0, 1e-300), max(y1 - y0, 1e-300)
-        if max(w, h) <= 1e-12 * max(abs(x0), abs(y0), abs(x1), abs(y1), 1.0):
-            w = h = 1.0  # a single point (one label): the extent's units
-        if w <= 1e-12 * max(h, 1.0):
-            w = h
-        if h <= 1e-12 * max(w, 1.0):
-            h = w
-        page = self.page
-        m = page.margin
-        if self.labels:
-            return _layout_with_boxes(self, (x0, y0, x1, y1), w, h)
-        if page.width is None:
-            scale = page.extent / max(w, h)
-            fits = [(page.fit_width, w), (page.fit_height, h)]
-            fitted = [(size - 2 * m) / ext for size, ext in fits if size is not None]
-            if fitted:
-                scale = min(fitted)
-                if min(fitted) <= 0:
-                    raise ValueError(
-                        f"Drawing: the page size must exceed twice the margin ({2 * m} pt)"
-                    )
-            pw, ph = w * scale + 2 * m, h * scale + 2 * m
-        else:
-            pw, ph = page.width, page.height
-            scale = min((pw - 2 * m) / w, (ph - 2 * m) / h)
-        cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
-        offset = np.array([pw / 2 - scale * cx, ph / 2 - scale * cy])
-        return scale, offset, pw, ph
 
     def page_size(self) -> tuple[float, float]:
         """Width and height of the page in points."""
@@ -496,128 +410,3 @@ class Drawing:
             f"<Drawing: {len(self.strokes)} strokes, {self.n_points} points, "
             f"page {w:.0f} x {h:.0f} pt>"
         )
-
-
-#: Most dashes :func:`dash_polyline` makes of one polyline (memory budget).
-MAX_DASHES = 1_000_000
-
-
-def dash_polyline(points: np.ndarray, pattern: Sequence[float]) -> list[np.ndarray]:
-    """Split a polyline into its dashes (for backends without native dashes).
-
-    ``pattern`` is a sequence of on/off lengths (in the units of ``points``)
-    repeated along the arc length from the first point.  Each dash is an
-    ``(m, 2)`` array: its interpolated start, the polyline's vertices inside
-    it, and its interpolated end.  Fully vectorized: no Python loop over
-    points or dashes.
-
-    >>> pts = np.array([[0.0, 0.0], [10.0, 0.0]])
-    >>> [d[:, 0].tolist() for d in dash_polyline(pts, (2, 3))]
-    [[0.0, 2.0], [5.0, 7.0]]
-    >>> [d.tolist() for d in dash_polyline([[0, 0], [2, 0], [2, 2]], (3, 0.5))]
-    [[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0]], [[2.0, 1.5], [2.0, 2.0]]]
-    """
-    pts = np.asarray(points, float)
-    pat = np.asarray(pattern, float)
-    if len(pts) < 2 or len(pat) < 2:
-        return []
-    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
-    arc = np.concatenate([[0.0], np.cumsum(seg)])
-    total = arc[-1]
-    period = float(pat.sum())
-    if not (total > 0 and period > 0):
-        return []
-    # Start of every "on" interval: period index times period plus the offset
-    # of that interval inside the pattern.
-    on = pat[0::2]
-    offsets = np.concatenate([[0.0], np.cumsum(pat)[1:-1:2]])
-    n_periods = int(np.ceil(total / period)) + 1
-    if n_periods * len(on) > MAX_DASHES:
-        raise ValueError(
-            f"dash_polyline: pattern {tuple(pat.tolist())} gives {n_periods * len(on)} dashes "
-            f"along a polyline of length {total:g}; the limit is {MAX_DASHES} "
-            "(lengthen the pattern)"
-        )
-    starts = (np.arange(n_periods)[:, None] * period + offsets[None, :]).ravel()
-    ends = starts + np.tile(on, n_periods)
-    keep = starts < total
-    starts, ends = starts[keep], np.minimum(ends[keep], total)
-    # Vertices strictly inside each dash: indices lo .. hi-1.
-    lo = np.searchsorted(arc, starts, side="right")
-    hi = np.searchsorted(arc, ends, side="left")
-    counts = hi - lo + 2
-    first = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    local = np.arange(counts.sum()) - np.repeat(first, counts)
-    idx = np.clip(np.repeat(lo - 1, counts) + local, 0, len(pts) - 1)
-    out = pts[idx]
-    ends_t = np.column_stack([starts, ends])
-    for axis in (0, 1):
-        interp = np.interp(ends_t, arc, pts[:, axis])
-        out[first, axis] = interp[:, 0]
-        out[first + counts - 1, axis] = interp[:, 1]
-    return np.split(out, first[1:])
-
-
-def _fit_scale(a: np.ndarray, lo: np.ndarray, hi: np.ndarray, avail: float) -> float:
-    """Largest scale ``s`` with ``max(a s + hi) - min(a s + lo) <= avail``.
-
-    The left side is convex in ``s`` and at ``s = 0`` is the widest text box,
-    so the scales that fit form an interval starting at 0; bisect its end.
-    """
-    span = float(a.max() - a.min())
-    if span <= 0:
-        return math.inf
-    if float(hi.max() - lo.min()) >= avail:
-        raise ValueError(
-            f"Drawing: the labels need more than the {avail:g} pt available; "
-            "make the page larger or the labels smaller"
-        )
-    s_lo, s_hi = 0.0, avail / span
-    while (a * s_hi + hi).max() - (a * s_hi + lo).min() <= avail:
-        s_lo, s_hi = s_hi, 2 * s_hi
-    for _ in range(80):
-        mid = 0.5 * (s_lo + s_hi)
-        if (a * mid + hi).max() - (a * mid + lo).min() <= avail:
-            s_lo = mid
-        else:
-            s_hi = mid
-    return s_lo
-
-
-def _layout_with_boxes(
-    drawing: Drawing, bounds: tuple[float, float, float, float], w: float, h: float
-) -> tuple[float, np.ndarray, float, float]:
-    """The layout when labels are present: their text boxes (in pt, not scaled)
-    must fit on the page as well as the strokes."""
-    x0, y0, x1, y1 = bounds
-    labels = drawing.labels
-    a = np.array([[x0, y0], [x1, y1]] + [lab.xy.tolist() for lab in labels])
-    boxes = np.array([lab.box() for lab in labels]).reshape(-1, 4)
-    lo = np.vstack([np.zeros((2, 2)), boxes[:, :2]])
-    hi = np.vstack([np.zeros((2, 2)), boxes[:, 2:]])
-    page = drawing.page
-    m = page.margin
-    if page.width is None:
-        fits = [
-            _fit_scale(a[:, k], lo[:, k], hi[:, k], size - 2 * m) if size is not None else math.inf
-            for k, size in enumerate((page.fit_width, page.fit_height))
-        ]
-        scale = min(fits) if any(f < math.inf for f in fits) else page.extent / max(w, h)
-        if not math.isfinite(scale):
-            scale = page.extent / max(w, h)
-        low = (a * scale + lo).min(axis=0)
-        high = (a * scale + hi).max(axis=0)
-        pw, ph = (high - low + 2 * m).tolist()
-        if page.fit_width is not None and scale == fits[0] < math.inf:
-            pw = page.fit_width  # exact (the bisection is within rounding)
-        offset = m - low
-    else:
-        pw, ph = page.width, page.height
-        scale = min(_fit_scale(a[:, k], lo[:, k], hi[:, k], size - 2 * m) for k, size in
-                    enumerate((pw, ph)))  # fmt: skip
-        if not math.isfinite(scale):
-            scale = min((pw - 2 * m) / w, (ph - 2 * m) / h)
-        low = (a * scale + lo).min(axis=0)
-        high = (a * scale + hi).max(axis=0)
-        offset = np.array([pw, ph]) / 2 - (low + high) / 2
-    return float(scale), offset, float(pw), float(ph)

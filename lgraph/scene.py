@@ -4,8 +4,8 @@ a transform and a style.  Rendering is a pure function of scene and projector.
 A scene can be added to another scene (a group): ``outer.add(inner,
 transform=T, style=S)``.  Groups nest to any depth; transforms compose
 (outer after inner) and a group's style applies to the members that set
-none.  Labels (:class:`~lgraph.objects.Label`) and point marks
-(:class:`~lgraph.objects.Point`) are added the same way.
+none.  Labels (:class:`~lgraph.Label`) and point marks
+(:class:`~lgraph.Point`) are added the same way.
 
 >>> import lgraph as lg
 >>> scene = lg.Scene()

@@ -13,7 +13,6 @@ from pathlib import Path
 PACKAGE = Path(__file__).resolve().parents[1] / "lgraph"
 
 
-
 def _module_name(path: Path) -> str:
     parts = list(path.with_suffix("").relative_to(PACKAGE.parent).parts)
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
@@ -113,3 +112,37 @@ def test_the_import_graph_has_no_cycles() -> None:
     assert "lgraph.curvature" not in graph["lgraph.families.fieldlines"]  # fields carry their stop
     cycles = [sorted(c) for c in strongly_connected(graph)]
     assert not cycles, f"import cycles: {cycles}"
+
+
+MAP = PACKAGE.parent / "docs" / "architecture.rst"
+MAX_LINES = 500
+
+
+def _modules() -> list[Path]:
+    return sorted(p for p in PACKAGE.rglob("*.py") if "__pycache__" not in p.parts)
+
+
+def test_every_module_is_on_the_module_map() -> None:
+    """docs/architecture.rst names every module (by its file name) in its map."""
+    text = MAP.read_text(encoding="utf-8")
+    block = text[text.index("The module map") : text.index("How things plug in")]
+    missing = [str(p.relative_to(PACKAGE)) for p in _modules() if p.name not in block]
+    assert not missing, f"modules missing from the map in docs/architecture.rst: {missing}"
+
+
+def test_every_module_says_what_it_is_for() -> None:
+    bare = [
+        str(p.relative_to(PACKAGE))
+        for p in _modules()
+        if not ast.get_docstring(ast.parse(p.read_text(encoding="utf-8")))
+    ]
+    assert not bare, f"modules without a docstring: {bare}"
+
+
+def test_no_module_is_longer_than_the_limit() -> None:
+    long = {
+        str(p.relative_to(PACKAGE)): n
+        for p in _modules()
+        if (n := len(p.read_text(encoding="utf-8").splitlines())) > MAX_LINES
+    }
+    assert not long, f"modules over {MAX_LINES} lines (split them along a seam): {long}"

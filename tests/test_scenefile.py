@@ -408,3 +408,12 @@ def test_tikz_plugin_options_pass_from_save(tmp_path, monkeypatch):
     assert options["save"] == {"standalone": True}
     out = scene.render(projector).save(tmp_path / "f.tex", **options["save"])
     assert "\\documentclass" in out.read_text()
+
+
+def test_every_unknown_key_of_a_table_is_reported_with_its_line(tmp_path):
+    text = BASE.replace('surface = "ellipsoid"', 'surface = "ellipsoid"\ncolour = 1\nhide = true')
+    path = write(tmp_path, text + "\n[page]\nwidht = 10\nmargn = 2\n")
+    with pytest.raises(SceneFileError) as e:
+        load_scene_file(path)
+    found = {key: line for line, key, _ in e.value.errors}
+    assert found == {"object[0].colour": 7, "object[0].hide": 8, "page.widht": 13, "page.margn": 14}

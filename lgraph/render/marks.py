@@ -37,11 +37,22 @@ def auto_anchor(dx: float, dy: float) -> str:
     return _COMPASS[k]
 
 
-def _hidden(xyz: np.ndarray, xy: np.ndarray, occlusion: Any) -> np.ndarray:
-    if not len(xyz):
-        return np.zeros(0, bool)
+def _placed(
+    kind: str, marks: tuple[Any, ...], projector: Projector, occlusion: Any, hidden_lines: bool
+) -> list[tuple[Any, np.ndarray, np.ndarray, bool]]:
+    """``(mark, xyz, xy, hidden)`` of the marks that are drawn, in order."""
+    if not marks:
+        return []
+    xyz = np.array([m.at for m in marks], dtype=float)
+    xy = _project(kind, xyz, projector)
     n = len(xyz)
-    return occlusion.hidden(xyz, xy, np.full(n, -1), np.full(n, OFF, dtype=np.int8))
+    hid = occlusion.hidden(xyz, xy, np.full(n, -1), np.full(n, OFF, dtype=np.int8))
+    out = []
+    for m, p, q, h in zip(marks, xyz, xy, hid.tolist()):
+        h = h and not m.always
+        if hidden_lines or not h:
+            out.append((m, p, q, h))
+    return out
 
 
 def _project(kind: str, xyz: np.ndarray, projector: Projector) -> np.ndarray:
@@ -65,40 +76,26 @@ def place_marks(
 ) -> tuple[list[PlacedLabel], list[Stroke]]:
     """Placed labels and point strokes of a scene's (world-coordinate) marks."""
     placed: list[PlacedLabel] = []
-    if labels:
-        xyz = np.array([lab.at for lab in labels], dtype=float)
-        xy = _project("label", xyz, projector)
-        hid = _hidden(xyz, xy, occlusion)
-        for lab, p, q, h in zip(labels, xyz, xy, hid.tolist()):
-            h = h and not lab.always
-            if h and not hidden_lines:
-                continue
-            anchor = lab.anchor
-            if anchor == "auto":
-                step = 1e-6 * max(1.0, float(np.linalg.norm(p)))
-                d = projector.project(p + step * lab.direction / np.linalg.norm(lab.direction))
-                anchor = auto_anchor(*(np.asarray(d) - q).tolist())
-            color = lab.color if lab.color is not None else (0.0, 0.0, 0.0)
-            style = Style(color=hidden_style.color if h else color)
-            placed.append(PlacedLabel(lab.text, q, p, not h, anchor, lab.offset, lab.size, style))
+    for lab, p, q, h in _placed("label", labels, projector, occlusion, hidden_lines):
+        anchor = lab.anchor
+        if anchor == "auto":
+            step = 1e-6 * max(1.0, float(np.linalg.norm(p)))
+            d = projector.project(p + step * lab.direction / np.linalg.norm(lab.direction))
+            anchor = auto_anchor(*(np.asarray(d) - q).tolist())
+        color = lab.color if lab.color is not None else (0.0, 0.0, 0.0)
+        style = Style(color=hidden_style.color if h else color)
+        placed.append(PlacedLabel(lab.text, q, p, not h, anchor, lab.offset, lab.size, style))
     strokes: list[Stroke] = []
-    if points:
-        xyz = np.array([pt.at for pt in points], dtype=float)
-        xy = _project("point", xyz, projector)
-        hid = _hidden(xyz, xy, occlusion)
-        for pt, p, q, h in zip(points, xyz, xy, hid.tolist()):
-            h = h and not pt.always
-            if h and not hidden_lines:
-                continue
-            base = hidden_style if h else (pt.style or Style())
-            style = Style(color=base.color, width=pt.size)
-            strokes.append(
-                Stroke(
-                    xy=np.array([q, q]),
-                    xyz=np.array([p, p]),
-                    visible=not h,
-                    family="point",
-                    style=style,
-                )  # fmt: skip
-            )
+    for pt, p, q, h in _placed("point", points, projector, occlusion, hidden_lines):
+        base = hidden_style if h else (pt.style or Style())
+        style = Style(color=base.color, width=pt.size)
+        strokes.append(
+            Stroke(
+                xy=np.array([q, q]),
+                xyz=np.array([p, p]),
+                visible=not h,
+                family="point",
+                style=style,
+            )  # fmt: skip
+        )
     return placed, strokes

@@ -129,7 +129,9 @@ from typing import Any
 
 from ._errors import _Invalid
 from ._locate import _key_text, _Locator  # noqa: F401 - _Locator: used by tests
-from ._schema import _OBJECT, _STYLE, _TOP, parse_scene  # noqa: F401 - the format's keys
+from ._members import _OBJECT  # noqa: F401 - the format's keys
+from ._schema import _TOP, parse_scene  # noqa: F401 - the format's keys
+from ._values import _STYLE  # noqa: F401 - the format's keys
 
 __all__ = ["load_scene_file", "parse_scene", "SceneFileError"]
 

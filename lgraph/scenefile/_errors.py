@@ -36,3 +36,7 @@ class _Collect:
         if self.errors:
             first, *rest = self.errors
             raise _Invalid(first.key, first.message, rest)
+
+
+def _fail(key: Key, message: str) -> None:
+    raise _Invalid(key, message)

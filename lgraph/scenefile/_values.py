@@ -1,5 +1,6 @@
-"""Typed values of a scene file: numbers, vectors, strings, tables, each checked
-and reported by key."""
+"""Typed values of a scene file: numbers, vectors, strings, tables, and the
+compound values that objects, groups and ``[render]`` share (transform steps,
+style tables), each checked and reported by key."""
 
 from __future__ import annotations
 
@@ -55,10 +56,15 @@ def _boolean(key: Key, v: Any) -> bool:
 
 
 def _only(key: Key, table: Mapping[str, Any], allowed: tuple[str, ...]) -> None:
-    for k in table:
-        if k not in allowed:
-            where = f" in [{_key_text(key)}]" if key else ""
-            raise _Invalid(key + (k,), f"unknown key {k!r}{where}; allowed: {', '.join(allowed)}")
+    """Every key of ``table`` not in ``allowed`` is a problem (all reported at once)."""
+    where = f" in [{_key_text(key)}]" if key else ""
+    bad = [
+        _Invalid(key + (k,), f"unknown key {k!r}{where}; allowed: {', '.join(allowed)}")
+        for k in table
+        if k not in allowed
+    ]
+    if bad:
+        raise _Invalid(bad[0].key, bad[0].message, bad[1:])
 
 
 def _required(key: Key, table: Mapping[str, Any], name: str) -> Any:
@@ -84,3 +90,91 @@ def _call(key: Key, what: str, func: Callable[..., Any], kwargs: dict[str, Any])
         m = re.match(r"^\s*[\w.]+: (\w+) must", msg)
         sub = key + (m.group(1),) if m and m.group(1) in kwargs else key
         raise _Invalid(sub, f"{what}: {msg}") from None
+
+
+# -- compound values ---------------------------------------------------------------
+def _transform(key: Key, items: Any) -> Any:
+    import lgraph as lg
+
+    if isinstance(items, dict):
+        items = [items]
+    if not isinstance(items, list):
+        raise _Invalid(
+            key, f"expected an array of {{ translate | rotate | scale = ... }}, got {_show(items)}"
+        )
+    total = None
+    for k, step in enumerate(items):
+        sk = key + (k,)
+        step = _table(sk, step)
+        if len(step) != 1 or next(iter(step)) not in ("translate", "rotate", "scale"):
+            raise _Invalid(
+                sk,
+                "each transform step is one of { translate = [x, y, z] }, "
+                "{ rotate = { axis = ..., degrees = ... } }, { scale = s | [sx, sy, sz] }",
+            )
+        op, arg = next(iter(step.items()))
+        ak = sk + (op,)
+        if op == "translate":
+            t = lg.translate(*_vector(ak, arg))
+        elif op == "rotate":
+            arg = _table(ak, arg)
+            _only(ak, arg, ("axis", "degrees"))
+            axis = _required(ak, arg, "axis")
+            if isinstance(axis, str):
+                axis = _string(ak + ("axis",), axis, ("x", "y", "z"))
+            else:
+                axis = _vector(ak + ("axis",), axis)
+            deg = _number(ak + ("degrees",), _required(ak, arg, "degrees"))
+            t = _call(
+                ak,
+                "rotate",
+                lambda **kw: lg.rotate(kw["axis"], kw["degrees"]),
+                {"axis": axis, "degrees": deg},
+            )
+        else:
+            factors = [_number(ak, arg)] if _is_number(arg) else _vector(ak, arg)
+            if any(x == 0 for x in factors):
+                raise _Invalid(ak, f"scale factors must be non-zero, got {arg!r}")
+            t = lg.scale(*factors)
+        total = t if total is None else t @ total
+    return total
+
+
+_STYLE = ("color", "width", "dash")
+
+
+def _style(key: Key, s: Any) -> Any:
+    from ..style import Style
+
+    s = _table(key, s)
+    _only(key, s, _STYLE)
+    kw: dict[str, Any] = {}
+    if "color" in s:
+        c = s["color"]
+        kw["color"] = (
+            _string(key + ("color",), c)
+            if not isinstance(c, list)
+            else tuple(_number(key + ("color", k), x) for k, x in enumerate(c))
+        )
+    if "width" in s:
+        kw["width"] = _number(key + ("width",), s["width"], positive=True)
+    if "dash" in s:
+        d = s["dash"]
+        if d is False:
+            kw["dash"] = None
+        elif isinstance(d, list):
+            kw["dash"] = tuple(
+                _number(key + ("dash", k), x, positive=True) for k, x in enumerate(d)
+            )
+        else:
+            raise _Invalid(
+                key + ("dash",), f"expected an array of lengths in pt or false, got {_show(d)}"
+            )
+    return _call(key, "style", Style, kw)
+
+
+def _styles(key: Key, s: Any) -> Any:
+    s = _table(key, s)
+    if s and all(isinstance(v, dict) for v in s.values()):  # per family
+        return {fam: _style(key + (fam,), v) for fam, v in s.items()}
+    return _style(key, s)

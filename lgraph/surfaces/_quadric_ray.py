@@ -25,12 +25,9 @@ from collections.abc import Callable
 import numpy as np
 
 from .._own import CONTOUR, ON
+from ..geometry.vectors import dot as _dot
 
 __all__ = ["quadric_ray_hits", "quadric_coefficients_world"]
-
-
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.einsum("...i,...i", a, b)
 
 
 def quadric_ray_hits(

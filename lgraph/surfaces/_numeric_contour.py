@@ -1,0 +1,174 @@
+"""The numeric contour of a parametrized surface: the default of
+:meth:`Surface.contour <lgraph.surfaces._base.Surface.contour>`.
+
+The contour is the zero set of ``f(u) = N(u) . w(u) / |w(u)|`` (``N`` the unit
+normal, ``w`` the view vector toward the viewer; :func:`view_cosine`), found
+by :func:`~lgraph.surfaces._zero_set.zero_set`.  Each curve of a zero set is
+interpolated by a spline in the parameter plane (periodic for closed curves,
+unwrapped across periodic seams) whose points are projected back onto the
+zero set by Newton's method when the renderer evaluates them
+(:func:`project_to_zero`), so drawn contour points satisfy ``f = 0`` to
+rounding (docs/mathematics.rst, "Level lines, parabolic lines,
+self-intersections").
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from scipy.interpolate import CubicSpline, make_interp_spline
+
+from .._own import CONTOUR, ON
+from ..geometry.vectors import cross as _cross
+from ._zero_set import CONTOUR_GRID, zero_set
+
+if TYPE_CHECKING:
+    from ..curves import CurveBatch
+    from ..projectors import Projector
+    from ._base import Surface
+
+__all__ = ["contour", "view_cosine", "project_to_contour", "project_to_zero", "zero_set_batch"]
+
+
+def _is_central(projector: Any) -> bool:
+    from ..projectors import CentralProjector
+
+    return isinstance(projector, CentralProjector)
+
+
+def view_cosine(surface: Surface, projector: Projector, u1: Any, u2: Any) -> np.ndarray:
+    """``N . w / |w|`` (``N`` unit normal, ``w`` toward the viewer); zero on the contour."""
+    u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+    x1, x2 = surface.derivatives(u1, u2)
+    n = _cross(x1, x2)
+    if _is_central(projector):
+        w = projector.eye - surface.point(u1, u2)
+    else:
+        w = np.broadcast_to(projector.frame[2], n.shape)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.einsum("...i,...i", n, w) / (
+            np.linalg.norm(n, axis=-1) * np.linalg.norm(w, axis=-1)
+        )
+
+
+def project_to_contour(
+    surface: Surface, projector: Projector, uv: np.ndarray, steps: int = 4
+) -> np.ndarray:
+    """Newton projection of parameters ``uv (n, 2)`` onto the contour ``f = 0``."""
+
+    def fun(u1: Any, u2: Any) -> np.ndarray:
+        return view_cosine(surface, projector, u1, u2)
+
+    return project_to_zero(surface, fun, uv, steps, 1e-14)
+
+
+def project_to_zero(
+    surface: Surface, fun: Any, uv: np.ndarray, steps: int = 4, ftol: float = 1e-14
+) -> np.ndarray:
+    """Newton projection of parameters ``uv (n, 2)`` onto ``fun(u1, u2) = 0``
+    (minimal steps in parameters scaled by the spans, central-difference
+    gradients); points with ``|fun| <= ftol`` stop early."""
+    d = surface.domain
+    scale = np.array([d.span(0), d.span(1)])
+    uv = np.array(uv, dtype=float, copy=True)
+    h = 1e-6 * scale
+    active = np.arange(len(uv))
+    for _ in range(steps):
+        if not len(active):
+            break
+        p = uv[active]
+        f = fun(p[:, 0], p[:, 1])
+        g1 = (fun(p[:, 0] + h[0], p[:, 1]) - fun(p[:, 0] - h[0], p[:, 1])) / (2 * h[0])
+        g2 = (fun(p[:, 0], p[:, 1] + h[1]) - fun(p[:, 0], p[:, 1] - h[1])) / (2 * h[1])
+        # minimal step in coordinates scaled by the spans
+        g1s, g2s = g1 * scale[0], g2 * scale[1]
+        gg = g1s * g1s + g2s * g2s
+        ok = np.isfinite(f) & (gg > 0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step = np.where(ok, f / gg, 0.0)
+        uv[active, 0] -= step * g1s * scale[0]
+        uv[active, 1] -= step * g2s * scale[1]
+        active = active[ok & (np.abs(f) > ftol)]
+    return uv
+
+
+def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) -> list[CurveBatch]:
+    """Numeric contour of ``surface`` for ``projector`` (local frame), as one batch."""
+
+    def fun(u1: Any, u2: Any) -> np.ndarray:
+        return view_cosine(surface, projector, u1, u2)
+
+    curves = zero_set(surface, fun, grid)
+    return [_contour_batch(surface, projector, curves)] if curves else []
+
+
+def _unwrap(surface: Surface, p: np.ndarray) -> np.ndarray:
+    d = surface.domain
+    p = p.copy()
+    for i in (0, 1):
+        if d.periodic[i]:
+            span = d.span(i)
+            dp = np.diff(p[:, i])
+            jumps = -span * np.round(dp / span)
+            p[1:, i] += np.cumsum(jumps)
+    return p
+
+
+class _ContourCurve:
+    """One contour curve: spline in the parameter plane + Newton projection."""
+
+    def __init__(self, surface: Surface, pts: np.ndarray, closed: bool) -> None:
+        d = surface.domain
+        scale = np.array([d.span(0), d.span(1)])
+        p = _unwrap(surface, pts)
+        if closed:
+            p = np.vstack([p, p[:1]])
+            if d.periodic[0] or d.periodic[1]:
+                # the closing step may cross a seam: unwrap it too
+                p[-1] = _unwrap(surface, p[-2:])[-1]
+        chord = np.linalg.norm(np.diff(p / scale, axis=0), axis=1)
+        keep = np.concatenate([[True], chord > 1e-3 * np.median(chord)])
+        if closed:
+            keep[-1] = True
+            keep[-2] = keep[-2] and chord[-1] > 1e-3 * np.median(chord)
+        p = p[keep]
+        t = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p / scale, axis=0), axis=1))])
+        self.length = float(t[-1])
+        self.closed = closed
+        if closed and len(p) >= 4:
+            self.drift = p[-1] - p[0]
+            self.spline = CubicSpline(t, p - np.outer(t / t[-1], self.drift), bc_type="periodic")
+        else:
+            self.drift = np.zeros(2)
+            self.spline = make_interp_spline(t, p, k=min(3, len(p) - 1))
+
+    def __call__(self, t: np.ndarray) -> np.ndarray:
+        return self.spline(t) + np.outer(t / self.length, self.drift)
+
+
+def _contour_batch(surface: Surface, projector: Projector, curves: list) -> CurveBatch:
+    return zero_set_batch(
+        surface, curves, lambda uv: project_to_contour(surface, projector, uv), "contour", CONTOUR
+    )
+
+
+def zero_set_batch(
+    surface: Surface, curves: list, adjust: Any, family: str, own: int = ON
+) -> CurveBatch:
+    """One batch of the :func:`zero_set` curves: splines in the parameter plane
+    (periodic for closed curves) whose points ``adjust(uv)`` projects back onto
+    the zero set at evaluation time."""
+    from ..curves import CurveBatch
+
+    objs = [_ContourCurve(surface, p, closed) for p, closed in curves]
+    return CurveBatch.from_curves(
+        surface,
+        family,
+        np.zeros(len(objs)),
+        [o.length for o in objs],
+        lambda k, t: objs[k](t),
+        closed=[o.closed for o in objs],
+        adjust=adjust,
+        own=own,
+    )
