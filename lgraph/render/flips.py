@@ -221,16 +221,16 @@ def _root_search(
         u[g] = np.where(slow, 0.5 * (ag + bg), np.where(inside, nxt, fallback))
         h[g] = np.where(inside & ~slow, 1e-4 * np.abs(step), 1e-2 * np.abs(bg - ag))
     # verify with the full test; accepted brackets replace the originals.  A
-    # bracket narrower than the target may end on a point whose margin is at
-    # rounding level (the full test may see its sign differently): those that
-    # fail are tried again widened to nearly the target width about their middle
+    # bracket much narrower than the target may end on a point whose margin is
+    # at rounding level (the full test may see its sign differently): closed
+    # brackets are first widened to nearly the target width about their middle
+    done = np.flatnonzero(~fl.open(idx, np.minimum(a, b), np.maximum(a, b)))
+    mid, sgn = 0.5 * (a[done] + b[done]), np.sign(b[done] - a[done])
+    half = np.maximum(0.99 * h_min[done], 0.5 * np.abs(b[done] - a[done]))
+    wa, wb = mid - sgn * half, mid + sgn * half
+    wide = ~fl.open(idx[done], np.minimum(wa, wb), np.maximum(wa, wb))
+    a[done[wide]], b[done[wide]] = wa[wide], wb[wide]
     ok = _verify(s, fl, vis, projector, idx, a, b)
-    bad = np.flatnonzero(~ok & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b)))
-    if len(bad):
-        mid, sgn = 0.5 * (a[bad] + b[bad]), np.sign(b[bad] - a[bad])
-        half = np.maximum(0.99 * h_min[bad], 0.5 * np.abs(b[bad] - a[bad]))
-        a[bad], b[bad] = mid - sgn * half, mid + sgn * half
-        ok[bad] = _verify(s, fl, vis, projector, idx[bad], a[bad], b[bad])
     sel, hl = idx[ok], fl.hlo[idx[ok]]
     fl.lo[sel] = np.where(hl, b[ok], a[ok])
     fl.hi[sel] = np.where(hl, a[ok], b[ok])
