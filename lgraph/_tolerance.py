@@ -39,6 +39,12 @@ SECTIONS = 32
 #: one point (measured: a step costs about as much as 2000 such tests).
 STEP_COST = 2000.0
 
+#: A surface's transition function (``Surface.visibility_margins``, of order 1)
+#: this close to zero at a flip's visible end counts as zero there: the end
+#: lies on the transition itself (a curve ending on a rim), so its sign is
+#: rounding noise.
+TRANSITION_ZERO = 1e-13
+
 #: A ray hit closer than this (relative to the surface's size) to the ray's
 #: origin is the origin's own surface, not an occluder.
 SELF_HIT_RTOL = 1e-9

@@ -2,15 +2,20 @@
 
 Where an exact ellipse (a parameter line of an ellipsoid) crosses its own
 ellipsoid's contour, the flip is in closed form; other flips caused by an
-ellipsoid are found by a safeguarded parabola search on a continuous hiding
-margin (about three steps); the rest by K-section on the exact visibility
-test.  Every result is verified by the full test, and both ends of every
-located flip are inserted into the samples.  Before refinement,
+ellipsoid, and flips on the curves of a surface that offers transition
+functions for its own points (:meth:`~lgraph.Surface.visibility_margins`,
+e.g. a surface of revolution: its contour, its rims), are found by a
+safeguarded parabola search on a continuous margin (about three steps); the
+rest by K-section on the exact visibility test.  Every result is verified
+by the full test, and both ends of every located flip are inserted into the
+samples.  Before refinement,
 ``seed_crossings`` puts samples on both sides of the crossings of exact
 ellipses that fall between two samples of one state.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import attrs
 import numpy as np
@@ -67,18 +72,8 @@ class _Flips:
 
 def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
     """Flips caused by an ellipsoid: root finding on its continuous hiding
-    margin ``f`` (safeguarded, a handful of steps instead of dozens).
-
-    Each step evaluates ``f`` at an estimate ``u`` and at ``u -+ h``; the
-    bracket shrinks to the sub-interval where ``f`` changes sign, and the next
-    estimate is the root of the parabola through the three values (Newton's
-    step when ``h`` is too small for a clean second difference), or the
-    secant of the bracket's ends when that root leaves the bracket.  ``h``
-    follows the size of the last correction, so that once the estimates
-    converge the three points straddle the root and the bracket collapses
-    on both sides; at the end ``h`` is half the target width.  Results are
-    verified with the full visibility test; brackets that fail stay for
-    :func:`_k_section`."""
+    margin (:meth:`Occlusion.margin`, see :func:`_root_search`); exact
+    ellipses on their own ellipsoid start from the closed-form crossing."""
     if not vis.nq or not len(fl):
         return
     hid_end = np.where(fl.hlo, fl.f, fl.f + 1)
@@ -96,13 +91,92 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
     idx, fa, fb, q = idx[good], fa[good], fb[good], q[idx][good]
     a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
     b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
+    if s.ellipses is not None:
+        _closed_form(s, fl, vis, projector, idx, q, a, b)
+
+    def margin(xyz: np.ndarray, k: np.ndarray, _uv: np.ndarray) -> np.ndarray:
+        return vis.margin(xyz, q[k], fl.owner[idx[k]], fl.kind[idx[k]])
+
+    _root_search(s, fl, vis, projector, idx, a, b, fa, fb, margin)
+
+
+def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
+    """Flips on curves of a surface that offers transition functions for its
+    own points (:meth:`~lgraph.Surface.visibility_margins`: for a
+    surface of revolution, the normal component of the ray and how far the
+    ray passes from its rims): each function in turn, for the flips still
+    open across which it changes sign, is turned into a margin (positive at
+    the hidden end) and its root found (:func:`_root_search`)."""
+    if not vis.items or not len(fl):
+        return
+    idx0 = np.flatnonzero(fl.open())
+    if not len(idx0):
+        return
+    hid_end = np.where(fl.hlo[idx0], fl.f[idx0], fl.f[idx0] + 1)
+    vis_end = np.where(fl.hlo[idx0], fl.f[idx0] + 1, fl.f[idx0])
+    rows = np.concatenate([vis_end, hid_end])
+    ends = vis.own_margins(
+        s.xyz[rows], np.tile(fl.owner[idx0], 2), np.tile(fl.kind[idx0], 2), s.uv[rows]
+    )  # every function at both ends (brackets that stay open keep their ends)
+    for i in range(len(ends)):
+        still = fl.open(idx0)
+        ga, gb = np.split(ends[i], 2)
+        # a sign change (NaN: no such function), or a visible end on the transition
+        good = still & ((ga * gb < 0) | ((np.abs(ga) <= tol.TRANSITION_ZERO) & (gb != 0)))
+        idx, ga, gb = idx0[good], ga[good], gb[good]
+        if not len(idx):
+            continue
+        orient = np.sign(gb)  # the margin is positive at the hidden end
+        ga = np.where(orient * ga > 0, 0.0, ga)
+        a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
+        b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
+
+        def margin(
+            xyz: np.ndarray, k: np.ndarray, uv: np.ndarray, i: int = i, idx: np.ndarray = idx,
+            orient: np.ndarray = orient,
+        ) -> np.ndarray:  # fmt: skip
+            m = vis.own_margins(xyz, fl.owner[idx[k]], fl.kind[idx[k]], uv, which=i)
+            return orient[k] * m[0]
+
+        _root_search(s, fl, vis, projector, idx, a, b, orient * ga, orient * gb, margin)
+
+
+def _root_search(
+    s: Samples,
+    fl: _Flips,
+    vis: Occlusion,
+    projector: Projector,
+    idx: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    fa: np.ndarray,
+    fb: np.ndarray,
+    margin: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray],
+) -> None:
+    """Brackets ``idx`` from their visible ends ``a`` (margin ``fa <= 0``) to
+    their hidden ends ``b`` (``fb > 0``) shrunk onto the root of a continuous
+    hiding margin (``margin(xyz, k, uv)`` at points ``xyz`` with parameters
+    ``uv`` of brackets ``idx[k]``):
+    safeguarded, a handful of steps instead of dozens.
+
+    Each step evaluates the margin at an estimate ``u`` and at ``u -+ h``; the
+    bracket shrinks to the sub-interval where it changes sign, and the next
+    estimate is the root of the parabola through the three values (Newton's
+    step when ``h`` is too small for a clean second difference), or the
+    secant of the bracket's ends when that root leaves the bracket (its
+    middle when the last step did not halve the bracket).  ``h``
+    follows the size of the last correction, so that once the estimates
+    converge the three points straddle the root and the bracket collapses
+    on both sides; at the end ``h`` is half the target width.  Results are
+    verified with the full visibility test; brackets that fail stay for
+    :func:`_k_section`."""
+    if not len(idx):
+        return
     # ``h`` is at least half the target width, and a clean second difference
     # needs it well above rounding (relative to the bracket's scale)
     scale = np.maximum(fl.span[idx], np.maximum(np.abs(a), np.abs(b)))
     h_min = 0.5 * tol.BISECTION_RTOL * scale
     h_quad = 1e-6 * scale
-    if s.ellipses is not None:
-        _closed_form(s, fl, vis, projector, idx, q, a, b)
     u = a + _secant(fa, fb) * (b - a)
     h = 1e-2 * np.abs(b - a)
     rows3 = np.array([-1.0, 0.0, 1.0])
@@ -110,15 +184,19 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
         g = np.flatnonzero(fl.open(idx, np.minimum(a, b), np.maximum(a, b)))
         if not len(g):
             break
-        ag, bg, ug = a[g], b[g], u[g]
+        ag, bg = a[g], b[g]
+        width = np.abs(bg - ag)
+        # an estimate within half the target width of an end (a root there,
+        # met by a margin at rounding level) moves that far inside, so that
+        # the three points straddle it at the target width
+        ug = np.clip(u[g], np.minimum(ag, bg) + h_min[g], np.maximum(ag, bg) - h_min[g])
         sgn = np.sign(bg - ag)  # from the visible end toward the hidden end
         room = np.minimum(np.abs(ug - ag), np.abs(bg - ug))  # keep the three points inside
         hg = np.minimum(np.maximum(h[g], h_min[g]), room)
         tt = ug[:, None] + (sgn * hg)[:, None] * rows3
         ig = idx[g]
-        xyz, _, _ = s.evaluate(np.repeat(fl.cid[ig], 3), tt.ravel(), None)
-        m = vis.margin(xyz, np.repeat(q[g], 3), np.repeat(fl.owner[ig], 3),
-                       np.repeat(fl.kind[ig], 3)).reshape(-1, 3)  # fmt: skip
+        xyz, uv, _ = s.evaluate(np.repeat(fl.cid[ig], 3), tt.ravel(), None)
+        m = margin(xyz, np.repeat(g, 3), uv).reshape(-1, 3)
         hid = m > 0
         first = np.where(hid.any(axis=1), hid.argmax(axis=1), 3)  # first hidden point
         r = np.arange(len(g))
@@ -136,16 +214,43 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
             ag, bg = a[g], b[g]
             inside = (nxt - ag) * (nxt - bg) < 0
             fallback = ag + _secant(fa[g], fb[g]) * (bg - ag)
-        u[g] = np.where(inside, nxt, fallback)
-        h[g] = np.where(inside, 1e-4 * np.abs(step), 1e-2 * np.abs(bg - ag))
-    # verify with the full test; accepted brackets replace the originals
-    xyz, _, xy = s.evaluate(np.tile(fl.cid[idx], 2), np.concatenate([a, b]), projector)
-    hv = vis.hidden(xyz, xy, np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2))
-    n = len(idx)
-    ok = ~hv[:n] & hv[n:] & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b))
+            # the secant after a step that did not halve the bracket (the margin
+            # flat at rounding level near an end, where the secant stagnates):
+            # bisect instead
+            slow = ~inside & (np.abs(bg - ag) > 0.5 * width)
+        u[g] = np.where(slow, 0.5 * (ag + bg), np.where(inside, nxt, fallback))
+        h[g] = np.where(inside & ~slow, 1e-4 * np.abs(step), 1e-2 * np.abs(bg - ag))
+    # verify with the full test; accepted brackets replace the originals.  A
+    # bracket much narrower than the target may end on a point whose margin is
+    # at rounding level (the full test may see its sign differently): closed
+    # brackets are first widened to nearly the target width about their middle
+    done = np.flatnonzero(~fl.open(idx, np.minimum(a, b), np.maximum(a, b)))
+    mid, sgn = 0.5 * (a[done] + b[done]), np.sign(b[done] - a[done])
+    half = np.maximum(0.99 * h_min[done], 0.5 * np.abs(b[done] - a[done]))
+    wa, wb = mid - sgn * half, mid + sgn * half
+    wide = ~fl.open(idx[done], np.minimum(wa, wb), np.maximum(wa, wb))
+    a[done[wide]], b[done[wide]] = wa[wide], wb[wide]
+    ok = _verify(s, fl, vis, projector, idx, a, b)
     sel, hl = idx[ok], fl.hlo[idx[ok]]
     fl.lo[sel] = np.where(hl, b[ok], a[ok])
     fl.hi[sel] = np.where(hl, a[ok], b[ok])
+
+
+def _verify(
+    s: Samples,
+    fl: _Flips,
+    vis: Occlusion,
+    projector: Projector,
+    idx: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+) -> np.ndarray:
+    """Which brackets ``idx`` are closed with ``a`` visible and ``b`` hidden
+    by the full visibility test."""
+    xyz, _, xy = s.evaluate(np.tile(fl.cid[idx], 2), np.concatenate([a, b]), projector)
+    hv = vis.hidden(xyz, xy, np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2))
+    n = len(idx)
+    return ~hv[:n] & hv[n:] & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b))
 
 
 def _contour_crossings(
@@ -321,6 +426,7 @@ def locate_flips(s: Samples, vis: Occlusion, projector: Projector) -> None:
     if not len(fl):
         return
     _margin_search(s, fl, vis, projector)
+    _own_margin_search(s, fl, vis, projector)
     _k_section(s, fl, vis, projector)
     # both ends of each bracket, in order, right after the flip's first sample
     t = np.column_stack([fl.lo, fl.hi]).ravel()

@@ -248,6 +248,42 @@ class Occlusion:
             out[idx] |= surf.hits(o, v, smax[idx], own)
         return out
 
+    def own_margins(
+        self,
+        xyz: np.ndarray,
+        owner: np.ndarray,
+        kind: np.ndarray,
+        uv: np.ndarray | None = None,
+        which: int | None = None,
+    ) -> np.ndarray:
+        """For points on a surface asked one by one, that surface's transition
+        functions (:meth:`~lgraph.Surface.visibility_margins`), ``(k,
+        n)`` padded with NaN; ``k = 0`` when no surface has any.  They speak
+        for the point's own surface only, not for the rest of the scene.
+        ``uv``: the points' parameters on their own surface, when known;
+        ``which``: only that function of each surface (one row)."""
+        parts = []
+        if len(xyz) and self.items:
+            dirs, smax = self.projector.rays(xyz)
+            for j, surf, inv, _ in self.items:
+                idx = np.flatnonzero(np.isin(owner, self.twins[j]) & (kind != OFF))
+                if not len(idx):
+                    continue
+                m = surf.visibility_margins(
+                    inv.apply(xyz[idx]),
+                    inv.apply_vector(dirs[idx]),
+                    smax[idx],
+                    kind[idx],
+                    None if uv is None else uv[idx],
+                    which,
+                )
+                if m is not None:
+                    parts.append((idx, np.asarray(m, float).reshape(-1, len(idx))))
+        out = np.full((max((len(m) for _, m in parts), default=0), len(xyz)), np.nan)
+        for idx, m in parts:
+            out[: len(m), idx] = m
+        return out
+
     def _owned(
         self, o: np.ndarray, q: np.ndarray, owner: np.ndarray, kind: np.ndarray, coef: tuple
     ) -> np.ndarray:

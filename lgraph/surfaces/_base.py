@@ -367,9 +367,7 @@ class Surface:
 
         return contour(self, projector)
 
-    def lines_of_curvature(
-        self, n1: int, n2: int, spacing: str = "complete"
-    ) -> list[CurveBatch]:
+    def lines_of_curvature(self, n1: int, n2: int, spacing: str = "complete") -> list[CurveBatch]:
         """``n1`` and ``n2`` lines of the two principal families.
 
         Default: numeric integration of the principal direction field (see
@@ -403,6 +401,32 @@ class Surface:
         from ._numeric_hits import hits
 
         return hits(self, origins, directions, smax, own)
+
+    def visibility_margins(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray,
+        uv: np.ndarray | None = None,
+        which: int | None = None,
+    ) -> np.ndarray | None:
+        """Continuous functions of a point on this surface whose sign changes
+        mark where the surface may start or stop hiding it, or None (default).
+
+        Optional: ``(k, n)`` values of order 1 (dimensionless), NaN where a
+        function does not apply; for
+        example minus the normal component of the ray (zero where the point
+        crosses the surface's own contour), or how far the ray passes from a
+        boundary curve.  The renderer locates a visibility flip of this
+        surface's curves by root finding on the first function that changes
+        sign across it (instead of repeated ray tests), and verifies every
+        result with :meth:`hits`; flips of other kinds are found by bisection.
+        ``own`` as for :meth:`hits`; ``uv`` (optional, ``(n, 2)``): the
+        origins' parameters, when the caller knows them (NaN rows: unknown);
+        ``which``: only that function (a ``(1, n)`` result).
+        """
+        return None
 
     def describe(self) -> str:
         return repr(self)

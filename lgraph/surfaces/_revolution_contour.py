@@ -79,9 +79,12 @@ def contour_residual(
     return num / (np.hypot(dr, dz) * wn)
 
 
-def _curves(surface: SurfaceOfRevolution, d_of: Any) -> list[tuple[float, float, int, bool]]:
-    """``(ta, tb, kind, closed)`` of every contour curve."""
-    from .ruled import _illinois
+def _curves(
+    surface: SurfaceOfRevolution, d_of: Any, dd_of: Any
+) -> list[tuple[float, float, int, bool]]:
+    """``(ta, tb, kind, closed)`` of every contour curve (``d_of``: ``D(t)``,
+    ``dd_of``: ``(D, D')``; the folds by safeguarded Newton steps)."""
+    from ._revolution_hits import _newton
 
     g = surface._grid
     t = g["t"]
@@ -89,9 +92,13 @@ def _curves(surface: SurfaceOfRevolution, d_of: Any) -> list[tuple[float, float,
     inside = dv >= 0
     j = np.nonzero(inside[1:] != inside[:-1])[0]
     span = surface.t_range[1] - surface.t_range[0]
-    folds = _illinois(
-        lambda x, sel: d_of(x), t[j], t[j + 1], dv[j], dv[j + 1], 4e-16 * span
-    ) if len(j) else np.empty(0)  # fmt: skip
+    folds = t[j].copy()  # D = 0 at a node (a cusp edge at an end): the node itself
+    open_ = np.flatnonzero(dv[j] != 0)
+    if len(open_):
+        k = j[open_]
+        folds[open_] = _newton(
+            lambda x, sel: dd_of(x), t[k], t[k + 1], dv[k], dv[k + 1], 4e-16 * span, 0.0
+        )
     # intervals (ta, tb, fold at ta, fold at tb) where D >= 0
     pieces: list[list[Any]] = []
     start: tuple[float, bool] | None = (float(t[0]), False) if inside[0] else None
@@ -138,7 +145,19 @@ def contour(surface: SurfaceOfRevolution, projector: Projector) -> list[CurveBat
         c, dz = _c_terms(surface, x, central, wa)
         return (dz * r0) ** 2 - c * c
 
-    curves = _curves(surface, d_of)
+    def dd_of(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        # D' = 2 z' z'' R0^2 - 2 C C', C' = rho'' w_a (parallel view) or
+        # z'' rho + rho'' (e_a - z) (central: the z' rho' terms cancel)
+        c, dz = _c_terms(surface, x, central, wa)
+        ddr, ddz = surface.ddrz(x)
+        if central:
+            rho, z = surface.rz(x)
+            dc = ddz * rho + ddr * (wa - z)
+        else:
+            dc = ddr * wa
+        return (dz * r0) ** 2 - c * c, 2 * (dz * ddz * r0 * r0 - c * dc)
+
+    curves = _curves(surface, d_of, dd_of)
     if not curves:
         return []
     ta, tb, kind, closed = (np.array(v) for v in zip(*curves))

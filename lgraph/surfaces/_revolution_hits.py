@@ -34,13 +34,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._own import CONTOUR, ON
+from .._own import CONTOUR, OFF, ON
 from .._tolerance import SELF_HIT_RTOL
+from ._revolution_local import near_own_hits
 
 if TYPE_CHECKING:
     from .revolution import SurfaceOfRevolution
 
-__all__ = ["hits"]
+__all__ = ["grazing", "hits", "ray_terms"]
 
 #: |F| below this (times size^2) is a root: rounding level of F, about 100 ulp
 GRAZE_FTOL = 1e-14
@@ -88,6 +89,87 @@ def _blocks(surface: SurfaceOfRevolution) -> dict:
     return out
 
 
+def ray_terms(surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray) -> tuple:
+    """``(|v|, v / |v|, o . a, c, k^2, d^2, h*, s*)`` of the lines ``o + s v``
+    (module docstring; ``s*`` where they come closest to the axis)."""
+    speed = np.sqrt(np.einsum("ij,ij->i", v, v))
+    vh = v / speed[:, None]
+    a = surface.frame[2]
+    oa, c = o @ a, vh @ a
+    op = o - oa[:, None] * a
+    vp = vh - c[:, None] * a
+    k2 = np.einsum("ij,ij->i", vp, vp)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sstar = np.where(k2 > 1e-300, -np.einsum("ij,ij->i", op, vp) / k2, 0.0)
+    q = op + sstar[:, None] * vp
+    d2 = np.einsum("ij,ij->i", q, q)
+    return speed, vh, oa, c, k2, d2, oa + c * sstar, sstar
+
+
+def grazing(
+    surface: SurfaceOfRevolution,
+    origins: np.ndarray,
+    directions: np.ndarray,
+    smax: np.ndarray,
+    own: np.ndarray,
+) -> np.ndarray:
+    """``-sign(F''(t*)) F(t*) / size^2 + GRAZE_FTOL`` at the extremum ``t*`` of
+    each ray's function ``F`` that is nearest to zero among those inside the
+    ray's range (NaN: none, or a line nearly perpendicular to the axis).
+    Where the ray starts or stops grazing the surface away from its point,
+    two roots of ``F`` merge at such an extremum: this value changes sign
+    there, smoothly along a curve, exactly where :func:`hits` (which counts
+    ``|F(t*)| <= GRAZE_FTOL size^2`` as touching) changes its answer."""
+    o = np.asarray(origins, dtype=float).reshape(-1, 3)
+    v = np.asarray(directions, dtype=float).reshape(-1, 3)
+    n = len(o)
+    out = np.full(n, np.nan)
+    if not n:
+        return out
+    g = surface._grid
+    size, t = g["size"], g["t"]
+    span = t[-1] - t[0]
+    speed, _, _, c, k2, d2, hs, ss = ray_terms(surface, o, v)
+    lam_max = np.broadcast_to(np.asarray(smax, dtype=float), (n,)) * speed
+    cut = np.where(np.asarray(own) == OFF, SELF_HIT_RTOL, CONTOUR_SELF_RTOL) * size
+    C2, K2 = (c * c)[:, None], k2[:, None]
+    dzh = g["z"] - hs[:, None]
+    dF = 2 * (C2 * g["rho"] * g["drho"] - K2 * dzh * g["dz"])
+    ri, cj = np.nonzero((dF[:, :-1] > 0) != (dF[:, 1:] > 0))
+    if not len(ri):
+        return out
+
+    def d_dd(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        p = ri[sel]
+        rr, zz = surface.rz(x)
+        dr, dzz = surface.drz(x)
+        ddr, ddz = surface.ddrz(x)
+        cc, kk, h = (c * c)[p], k2[p], zz - hs[p]
+        return (
+            2 * (cc * rr * dr - kk * h * dzz),
+            2 * (cc * (dr * dr + rr * ddr) - kk * (dzz * dzz + h * ddz)),
+        )
+
+    # F is flat at its extremum: t to 1e-9 gives F there to rounding level
+    te = _newton(d_dd, t[cj], t[cj + 1], dF[ri, cj], dF[ri, cj + 1], 1e-9 * span, 0.0)
+    rr, zz = surface.rz(te)
+    h = zz - hs[ri]
+    fe = (c * c)[ri] * (rr * rr - d2[ri]) - k2[ri] * h * h
+    curv = d_dd(te, np.arange(len(te)))[1]
+    steep = np.abs(c[ri]) >= FLAT_C
+    with np.errstate(invalid="ignore", divide="ignore"):
+        lam = ss[ri] + h / np.where(steep, c[ri], 1.0)
+    ok = steep & (lam > cut[ri]) & (lam < lam_max[ri])
+    ri, fe, curv = ri[ok], fe[ok], curv[ok]
+    order = np.lexsort((np.abs(fe), ri))  # by ray, then |F|
+    ri, fe, curv = ri[order], fe[order], curv[order]
+    first = np.concatenate([[True], ri[1:] != ri[:-1]]) if len(ri) else np.zeros(0, bool)
+    # oriented to be positive where the two roots exist (below a minimum, above
+    # a maximum), shifted by the band where the ray test counts a touching
+    out[ri[first]] = -np.sign(curv[first]) * fe[first] / size**2 + GRAZE_FTOL
+    return out
+
+
 def hits(
     surface: SurfaceOfRevolution,
     origins: np.ndarray,
@@ -105,23 +187,17 @@ def hits(
     own = np.zeros(n, np.int8) if own is None else np.asarray(own)
     g = surface._grid
     size = g["size"]
-    speed = np.sqrt(np.einsum("ij,ij->i", v, v))
-    vh = v / speed[:, None]
-    a = g["frame"][2]
-    oa, c = o @ a, vh @ a
-    op = o - oa[:, None] * a
-    vp = vh - c[:, None] * a
-    k2 = np.einsum("ij,ij->i", vp, vp)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        sstar = np.where(k2 > 1e-300, -np.einsum("ij,ij->i", op, vp) / k2, 0.0)
-    q = op + sstar[:, None] * vp
-    d2 = np.einsum("ij,ij->i", q, q)
-    hstar = oa + c * sstar
+    speed, vh, oa, c, k2, d2, hstar, sstar = ray_terms(surface, o, v)
     lam_max = smax * speed
     flat = np.abs(c) < FLAT_C
     rtol = np.where(own == CONTOUR, CONTOUR_SELF_RTOL, SELF_HIT_RTOL)
     rtol = np.where((own == ON) & flat, FLAT_RTOL, rtol)
     eps = rtol * size
+    on = np.flatnonzero(own == ON)
+    if len(on):  # second roots near the point's own (at its contour): local analysis
+        cut = CONTOUR_SELF_RTOL * size
+        out[on], decided = near_own_hits(surface, o[on], vh[on], cut)
+        eps[on[decided]] = np.maximum(eps[on[decided]], cut)
     blk = _blocks(surface)
     nb = len(blk["j0"])
     step = max(1, CHUNK // nb)
@@ -296,6 +372,11 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
         [np.ones(len(cells[0][0]), bool)] + [np.zeros(len(x[0]), bool) for x in cells[1:]]
     )[live]
     sa, sb = node & (np.abs(fa0) <= ftol), node & (np.abs(fb0) <= ftol)
+    if not g["closed"]:
+        # at a rim only a sign change counts: the flip where a ray passes the rim
+        # is then exactly where F at the end changes sign (no touching band)
+        sa &= ta != t_all[0]
+        sb &= tb != t_all[-1]
     turn = (
         ~chg
         & ~sa

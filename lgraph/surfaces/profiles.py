@@ -59,6 +59,13 @@ class Profile:
     )
     t_range: tuple[float, float] | None = None
     name: str = "custom"
+    #: An interval of ``t`` on which the profile is *proved* (not sampled) to
+    #: bound a convex solid: ``z`` strictly monotone with ``sigma = sign z'``
+    #: and ``sigma (rho' z'' - z' rho'') >= 0`` there.  A surface whose
+    #: ``t_range`` lies inside it, with poles at both ends and a full turn, then
+    #: decides the visibility of its own points without ray tests
+    #: (:mod:`lgraph.surfaces._revolution_convex`).  None: no such claim.
+    convex: tuple[float, float] | None = attrs.field(default=None, kw_only=True)
 
     @func.validator
     def _check_func(self, _a: Any, v: Any) -> None:
@@ -104,7 +111,14 @@ def _catenoid(c: float = 1.0, height: float = 1.2) -> Profile:
 
 def _egg(a: float = 1.4, b: float = 1.0, e: float = 0.18) -> Profile:
     """Egg ``rho = b sin t (1 + e cos t)``, ``z = -a cos t``, ``0 <= t <= pi``
-    (blunt end down for ``e > 0``; poles at both ends)."""
+    (blunt end down for ``e > 0``; poles at both ends).
+
+    Convex for ``a != 0``, ``b > 0``, ``|e| < 1/sqrt(2)``: ``z' = a sin t`` has
+    the sign of ``a`` inside, and ``rho' z'' - z' rho'' = a b (1 + e cos t (1 + 2
+    sin^2 t))``, where ``|cos t (1 + 2 sin^2 t)| = |c (3 - 2 c^2)| <= sqrt(2)``
+    (its maximum, at ``c = 1/sqrt(2)``); so ``sign(a) (rho' z'' - z' rho'') >=
+    |a| b (1 - sqrt(2) |e|) > 0``.
+    """
 
     def f(t: np.ndarray) -> Pair:
         return b * np.sin(t) * (1 + e * np.cos(t)), -a * np.cos(t)
@@ -115,7 +129,8 @@ def _egg(a: float = 1.4, b: float = 1.0, e: float = 0.18) -> Profile:
     def dd(t: np.ndarray) -> Pair:
         return b * (-np.sin(t) - 2 * e * np.sin(2 * t)), a * np.cos(t)
 
-    return Profile(f, d, dd, (0.0, math.pi), "egg")
+    convex = (0.0, math.pi) if a != 0 and b > 0 and abs(e) * math.sqrt(2) < 1 else None
+    return Profile(f, d, dd, (0.0, math.pi), "egg", convex=convex)
 
 
 def _vase(radius: float = 1.0, bulge: float = 0.42, height: float = 3.0) -> Profile:
@@ -137,7 +152,8 @@ def _vase(radius: float = 1.0, bulge: float = 0.42, height: float = 3.0) -> Prof
 
 def _circle(center: Any = (2.0, 0.0), radius: float = 1.0) -> Profile:
     """Circle ``(c_rho + radius cos t, c_z + radius sin t)``, ``0 <= t <= 2 pi``:
-    a torus (``c_rho > radius``) or, with ``c_rho = 0`` and ``|t| <= pi/2``, a sphere."""
+    a torus (``c_rho > radius``) or, with ``c_rho = 0`` and ``|t| <= pi/2``, a sphere
+    (convex there: ``z' = radius cos t > 0`` and ``rho' z'' - z' rho'' = radius^2``)."""
     cr, cz = (float(as_number(x)) for x in center)
 
     def f(t: np.ndarray) -> Pair:
@@ -149,7 +165,8 @@ def _circle(center: Any = (2.0, 0.0), radius: float = 1.0) -> Profile:
     def dd(t: np.ndarray) -> Pair:
         return -radius * np.cos(t), -radius * np.sin(t)
 
-    return Profile(f, d, dd, (0.0, 2 * math.pi), "circle")
+    convex = (-math.pi / 2, math.pi / 2) if cr == 0 and radius > 0 else None
+    return Profile(f, d, dd, (0.0, 2 * math.pi), "circle", convex=convex)
 
 
 #: Named profiles: name -> factory taking keyword parameters.

@@ -50,6 +50,7 @@ from typing import TYPE_CHECKING, Any
 import attrs
 import numpy as np
 
+from .._own import OFF
 from .._tolerance import FD_STEP_2
 from .._validate import count, interval, vector3
 from ..curves import _d1, _d2
@@ -391,10 +392,54 @@ class SurfaceOfRevolution(Surface):
         smax: np.ndarray,
         own: np.ndarray | None = None,
     ) -> np.ndarray:
-        """Exact ray test by reduction to the profile plane (module docstring)."""
+        """Exact ray test by reduction to the profile plane (module docstring).
+
+        On a certified convex closed surface (:attr:`convex`), the rays from its
+        own points are decided by the sign of the hiding margin instead
+        (:mod:`lgraph.surfaces._revolution_convex`)."""
         from ._revolution_hits import hits
 
-        return hits(self, origins, directions, smax, own)
+        if own is None or not self.convex:
+            return hits(self, origins, directions, smax, own)
+        from ._revolution_convex import margin
+
+        own = np.asarray(own)
+        o = np.asarray(origins, dtype=float).reshape(-1, 3)
+        v = np.asarray(directions, dtype=float).reshape(-1, 3)
+        sm = np.broadcast_to(np.asarray(smax, dtype=float), (len(o),))
+        mine = own != OFF
+        if mine.all():
+            return margin(self, o, v, sm, own, exact=False) > 0
+        out = np.zeros(len(o), bool)
+        out[mine] = margin(self, o[mine], v[mine], sm[mine], own[mine], exact=False) > 0
+        rest = ~mine
+        out[rest] = hits(self, o[rest], v[rest], sm[rest], own[rest])
+        return out
+
+    @property
+    def convex(self) -> bool:
+        """Whether the surface is the whole boundary of a convex solid, proved
+        by its profile's ``Profile.convex``
+        interval (poles at both ends of ``t_range``, a full turn)."""
+        from ._revolution_convex import convex_sign
+
+        return convex_sign(self) != 0
+
+    def visibility_margins(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray,
+        uv: np.ndarray | None = None,
+        which: int | None = None,
+    ) -> np.ndarray | None:
+        """Its contour (``N . v``), rims and grazing rays as transition functions;
+        a convex surface's exact hiding margin
+        (:mod:`lgraph.surfaces._revolution_margins`)."""
+        from ._revolution_margins import margins
+
+        return margins(self, origins, directions, smax, own, uv, which)
 
 
 def revolution_from_profile(

@@ -1,0 +1,100 @@
+"""Transition functions of a surface of revolution for the renderer's flip search.
+
+Along a curve on the surface, the surface starts or stops hiding the curve's
+point ``x`` (ray ``x + s v`` toward the viewer) where
+
+* ``x`` crosses the surface's own contour: ``N(x) . v = 0``; on a certified
+  convex closed surface this is the only way, and ``-N . v`` is positive
+  exactly where the point is hidden (:mod:`lgraph.surfaces._revolution_convex`);
+* the ray passes through a rim, the boundary parallel ``t_e`` (not a pole):
+  the line meets that circle exactly when
+  ``F_e = c^2 (rho_e^2 - d^2) - k^2 (z_e - h*)^2 = 0`` (``c = v . a``,
+  ``k^2 = 1 - c^2``, ``d`` the line's distance from the axis and ``h*`` the
+  height where it comes closest; the ray function of
+  :mod:`lgraph.surfaces._revolution_hits` at ``t_e``), smooth in ``x``;
+* the ray grazes the surface elsewhere (not supplied: such flips are
+  bisected on the full test).
+
+:meth:`SurfaceOfRevolution.visibility_margins` returns these functions; the
+renderer root-finds the one that changes sign across a flip and verifies the
+result with the full ray test (docs/mathematics.rst, "Surfaces of
+revolution").
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .._own import CONTOUR, OFF
+from ._revolution_convex import convex_sign, margin
+from ._revolution_hits import grazing
+from ._revolution_local import normal_component
+
+if TYPE_CHECKING:
+    from .revolution import SurfaceOfRevolution
+
+__all__ = ["margins", "rim_function"]
+
+
+def rim_function(
+    surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray, t_e: float
+) -> np.ndarray:
+    """``F_e / size^2`` (module docstring): zero where the line ``o + s v``
+    meets the parallel ``t_e``."""
+    a = surface.frame[2]
+    vh = v / np.sqrt(np.einsum("ij,ij->i", v, v))[:, None]
+    oa, c = o @ a, vh @ a
+    op = o - oa[:, None] * a
+    vp = vh - c[:, None] * a
+    k2 = np.einsum("ij,ij->i", vp, vp)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sstar = np.where(k2 > 1e-300, -np.einsum("ij,ij->i", op, vp) / k2, 0.0)
+    q = op + sstar[:, None] * vp
+    d2 = np.einsum("ij,ij->i", q, q)
+    hstar = oa + c * sstar
+    rho_e, z_e = (float(x[0]) for x in surface.rz(np.array([t_e])))
+    f = c * c * (rho_e * rho_e - d2) - k2 * (z_e - hstar) ** 2
+    return f / surface.size**2
+
+
+def margins(
+    surface: SurfaceOfRevolution,
+    origins: np.ndarray,
+    directions: np.ndarray,
+    smax: np.ndarray,
+    own: np.ndarray,
+    uv: np.ndarray | None = None,
+    which: int | None = None,
+) -> np.ndarray:
+    """The transition functions, ``(k, n)`` (only row ``which`` when given): on
+    a certified convex surface its exact hiding margin alone; otherwise
+    ``N . v / |v|`` (NaN where ``uv`` is unknown and on contour curves), one
+    rim function per boundary parallel that is not a pole, and the grazing
+    function (:func:`~lgraph.surfaces._revolution_hits.grazing`)."""
+    o = np.asarray(origins, float).reshape(-1, 3)
+    v = np.asarray(directions, float).reshape(-1, 3)
+    own = np.asarray(own)
+    if convex_sign(surface):
+        return margin(surface, o, v, smax, own, uv)[None]
+    rims = [] if surface.profile_closed else [
+        end for end, pole in zip(surface.t_range, surface.poles) if not pole
+    ]  # fmt: skip
+
+    def row(k: int) -> np.ndarray:
+        if k == 0:
+            nv = np.full(len(o), np.nan)
+            if uv is not None:
+                t = np.asarray(uv, float).reshape(-1, 2)[:, 0]
+                on = np.flatnonzero((own != OFF) & (own != CONTOUR) & np.isfinite(t))
+                if len(on):
+                    nv[on] = normal_component(surface, o[on], v[on], t[on])
+            return nv
+        if k <= len(rims):
+            return rim_function(surface, o, v, rims[k - 1])
+        return grazing(surface, o, v, smax, own)
+
+    if which is not None:
+        return row(which)[None]
+    return np.stack([row(k) for k in range(len(rims) + 2)])
