@@ -145,9 +145,3 @@ def test_zero_set_drops_a_zero_at_a_single_grid_node():
     assert closed and not rest
     assert np.abs(np.hypot(pts[:, 0] - 0.5, pts[:, 1] - 0.5) - 0.3).max() < 1e-14
 
-
-def test_the_import_paths_other_modules_use_still_work():
-    # surfaces of revolution import the root finder as ruled._illinois
-    from lgraph.surfaces import ruled
-
-    assert ruled._illinois is bracketed_roots

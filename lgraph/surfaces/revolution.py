@@ -366,7 +366,7 @@ class SurfaceOfRevolution(Surface):
 
     def _roots_in_t(self, func: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
         """Roots of ``func(t)`` inside ``t_range`` (sign changes on the grid, refined)."""
-        from .ruled import _illinois
+        from .._roots import bracketed_roots
 
         t = self._grid["t"]
         f = func(t)
@@ -375,7 +375,7 @@ class SurfaceOfRevolution(Surface):
         if not len(j):
             return exact
         span = self.t_range[1] - self.t_range[0]
-        x = _illinois(lambda x, sel: func(x), t[j], t[j + 1], f[j], f[j + 1], 4e-16 * span)
+        x = bracketed_roots(lambda x, sel: func(x), t[j], t[j + 1], f[j], f[j + 1], 4e-16 * span)
         return np.concatenate([exact, x])
 
     def contour(self, projector: Projector) -> list[CurveBatch]:

@@ -40,7 +40,6 @@ from typing import Any
 import attrs
 import numpy as np
 
-from .._roots import bracketed_roots
 from .._tolerance import RULED_PRE_SAMPLES as _PRE_SAMPLES
 from .._validate import interval, vector3
 from ..curves import Curve, CurveBatch
@@ -49,9 +48,6 @@ from ._ruled_curvature import _RuledCurvature
 from ._ruled_hits import _RuledHits
 
 __all__ = ["RuledSurface", "GeneralCylinder", "GeneralCone", "TangentSurface"]
-
-#: the name surfaces/revolution.py and surfaces/_revolution_contour.py import
-_illinois = bracketed_roots
 
 
 def _curve(owner: str, name: str, value: Any) -> Curve:
