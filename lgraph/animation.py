@@ -49,7 +49,7 @@ import numpy as np
 
 from ._budget import check_frames
 from .drawing import Drawing, Page, Stroke
-from .frame_writers import writer_for
+from .frame_writers import GifWriter, writer_for
 from .projectors import Projector
 
 __all__ = ["animate", "frame_window", "PARALLEL_MIN_FRAMES", "MAX_WIDTH"]
@@ -132,6 +132,7 @@ class _Job:
     size: tuple[int, int]
     kind: str  # "png", "svg", "pdf" (the frame file's bytes) or "drawing"
     render_options: dict
+    gray: bool = False  # grey raster frames may come as "L" images (GIF frames)
 
     def __reduce__(self) -> tuple:
         # the fields with cloudpickle when installed (scenes may hold lambdas);
@@ -159,7 +160,7 @@ class _Job:
         if self.kind == "png":
             from .backends.png import render_image
 
-            im, _ = render_image(d, size=self.size)
+            im, _ = render_image(d, size=self.size, gray=self.gray)
             if not portable:
                 return im
             buf = io.BytesIO()
@@ -428,7 +429,8 @@ def animate(
     kind = writer.kind
     if kind == "bytes":
         kind = writer.fmt
-    job = _Job(scene, window, page, (width, height), kind, options)
+    gray = isinstance(writer, GifWriter)  # frames in one channel may differ in mode
+    job = _Job(scene, window, page, (width, height), kind, options, gray)
 
     bar = _Progress(len(views), progress)
     pool = frames = None

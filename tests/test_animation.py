@@ -91,6 +91,36 @@ def test_gif_has_every_frame_at_the_requested_size(scene, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.gif"]
 
 
+def test_grey_gif_frames_are_exact_and_colour_ones_close(scene, tmp_path):
+    # black on white: frames drawn in one grey channel, the GIF keeps every level
+    got, want = _frames(lg.animate(scene, VIEWS, tmp_path / "g.gif", width=WIDTH,
+                                   progress=False)), _reference(scene, VIEWS)  # fmt: skip
+    assert all(np.array_equal(g, w) for g, w in zip(got, want))
+    # red hidden lines in some frames only (a graph seen from above hides
+    # nothing): colour and grey frames mixed
+    scene = lg.Scene()
+    scene.add(lg.HyperbolicParaboloid(1, 1), lg.ParameterLines(5, 5))
+    red = lg.Style(color="red", dash=(2, 1.5))
+    views = [lg.ParallelProjector(direction=(0, 0, 1)), *lg.orbit(elevation=10, frames=3)[:2]]
+    opts = {"hidden_style": red}
+    path = lg.animate(scene, views, tmp_path / "c.gif", width=WIDTH, hidden_lines=True,
+                      render_options=opts, progress=False)  # fmt: skip
+    got = _frames(path)
+    window = animation.frame_window(scene, views)
+    m = 0.03 * WIDTH
+    h = got[0].shape[0]
+    for g, v in zip(got, views):
+        d = scene.render(v, hidden_lines=True, hidden_style=red)
+        d = lg.Drawing(d.strokes, page=lg.Page(width=float(WIDTH), height=float(h), margin=m),
+                       window=window)  # fmt: skip
+        buf = io.BytesIO()
+        d.save(buf, format="png", size=(WIDTH, h))
+        w = np.asarray(Image.open(io.BytesIO(buf.getvalue())).convert("RGB"), dtype=int)
+        assert np.abs(g - w).mean() < 1.0 and np.abs(g - w).max() < 40
+    reds = [((f[..., 0] - f[..., 2]) > 60).sum() for f in got]
+    assert reds[0] == 0 and reds[1] > 0 and reds[2] > 0
+
+
 @pytest.mark.parametrize("name", ["t.png", "t.apng", "t.webp"])
 def test_apng_and_webp_are_lossless(scene, tmp_path, name):
     path = lg.animate(scene, VIEWS, tmp_path / name, width=WIDTH, fps=8, progress=False)
