@@ -11,9 +11,9 @@ geodesics, ...) is computed once per process (:mod:`lgraph.families.cache`);
 only the contour, the sampling and the visibility are redone per frame.
 
 Frames run in this process, in a local process pool (the default for many
-frames), or on any :class:`concurrent.futures.Executor` -- including a Dask
-cluster's ``client.get_executor()``, to which the scene is scattered once
-per worker.
+frames that take long), or on any :class:`concurrent.futures.Executor` --
+including a Dask cluster's ``client.get_executor()``, to which the scene is
+scattered once per worker.
 
 >>> import os, tempfile
 >>> import lgraph as lg
@@ -52,10 +52,17 @@ from .drawing import Drawing, Page, Stroke
 from .frame_writers import GifWriter, writer_for
 from .projectors import Projector
 
-__all__ = ["animate", "frame_window", "PARALLEL_MIN_FRAMES", "MAX_WIDTH"]
+__all__ = ["animate", "frame_window", "PARALLEL_MIN_FRAMES", "POOL_MIN_SECONDS", "MAX_WIDTH"]
 
-#: With ``executor=None``, at least this many frames run in a local process pool.
+#: With ``executor=None``, at least this many frames may run in a local process pool.
 PARALLEL_MIN_FRAMES = 24
+
+#: With ``executor=None`` and ``workers=None``, the pool starts only when the
+#: frames left after the first two would take longer than this in this
+#: process (seconds, estimated from the second frame): a pool's start, the
+#: scene sent to each worker and the geometry computed again in each cost
+#: more than a short run gains.
+POOL_MIN_SECONDS = 3.0
 
 #: Largest frame width in pixels.
 MAX_WIDTH = 8000
@@ -271,30 +278,63 @@ def _ordered(submit: Any, items: Sequence[Any], window: int) -> Iterator[Any]:
             fut.cancel()
 
 
+def _local_pool(job: _Job, workers: int, pools: list) -> Any:
+    """A process pool of ``workers`` with ``job`` installed (appended to
+    ``pools``), or None when the scene cannot be pickled (with a warning)."""
+    try:
+        data = _dumps(job)
+    except Exception as e:  # noqa: BLE001 - e.g. a lambda without cloudpickle
+        warnings.warn(
+            f"animate: the scene cannot be sent to worker processes ({e}); rendering "
+            "the frames in this process (pip install cloudpickle to send lambdas)",
+            RuntimeWarning,
+            stacklevel=4,
+        )
+        return None
+    pool = cf.ProcessPoolExecutor(workers, initializer=_install, initargs=(data,))
+    pools.append(pool)
+    return pool
+
+
+def _pooled(job: _Job, views: list[Projector], workers: int, pools: list) -> Iterator[Any]:
+    pool = _local_pool(job, workers, pools)
+    if pool is None:
+        yield from (job.render(v) for v in views)
+    else:
+        yield from _ordered(lambda v: pool.submit(_render_installed, v), views, 2 * workers)
+
+
+def _adaptive(job: _Job, views: list[Projector], workers: int, pools: list) -> Iterator[Any]:
+    """The default for many frames: the first two here (the first fills the
+    geometry cache), then the rest in a pool of ``workers`` processes only
+    if, at the second frame's pace, they would take longer than
+    :data:`POOL_MIN_SECONDS` here.  The frames are the same either way."""
+    yield job.render(views[0])
+    t0 = time.perf_counter()
+    yield job.render(views[1])
+    rest = views[2:]
+    if (time.perf_counter() - t0) * len(rest) > POOL_MIN_SECONDS:
+        yield from _pooled(job, rest, workers, pools)
+    else:
+        yield from (job.render(v) for v in rest)
+
+
 def _frames(
-    job: _Job, views: list[Projector], executor: Any, workers: int | None
-) -> tuple[Iterator[Any], Any]:
-    """The rendered frames in order, and the pool to shut down (or None)."""
+    job: _Job, views: list[Projector], executor: Any, workers: int | None, pools: list
+) -> Iterator[Any]:
+    """The rendered frames in order; local pools started are appended to
+    ``pools`` (for the caller to shut down)."""
     n = len(views)
     if executor is None:
         if workers is None:
-            workers = min(os.cpu_count() or 1, 8) if n >= PARALLEL_MIN_FRAMES else 1
+            k = min(os.cpu_count() or 1, 8)
+            if n >= max(PARALLEL_MIN_FRAMES, 3) and k > 1:
+                return _adaptive(job, views, k, pools)
+            workers = 1
         workers = max(1, min(int(workers), n))
         if workers > 1:
-            try:
-                data = _dumps(job)
-            except Exception as e:  # noqa: BLE001 - e.g. a lambda without cloudpickle
-                warnings.warn(
-                    f"animate: the scene cannot be sent to worker processes ({e}); rendering "
-                    "the frames in this process (pip install cloudpickle to send lambdas)",
-                    RuntimeWarning,
-                    stacklevel=3,
-                )
-            else:
-                pool = cf.ProcessPoolExecutor(workers, initializer=_install, initargs=(data,))
-                frames = _ordered(lambda v: pool.submit(_render_installed, v), views, 2 * workers)
-                return frames, pool
-        return (job.render(v) for v in views), None
+            return _pooled(job, views, workers, pools)
+        return (job.render(v) for v in views)
     if not isinstance(executor, cf.Executor):
         raise TypeError(
             "animate: executor must be a concurrent.futures.Executor (a process or thread "
@@ -302,12 +342,10 @@ def _frames(
         )
     k = _max_workers(executor)
     if isinstance(executor, cf.ThreadPoolExecutor):  # shares this process's scene
-        return _ordered(lambda v: executor.submit(job.render, v), views, 2 * k), None
+        return _ordered(lambda v: executor.submit(job.render, v), views, 2 * k)
     if _is_dask(executor):  # the job goes to every worker once
         scattered = executor._client.scatter(job, broadcast=True, hash=False)
-        return _ordered(
-            lambda v: executor.submit(_render_scattered, scattered, v), views, 2 * k
-        ), None
+        return _ordered(lambda v: executor.submit(_render_scattered, scattered, v), views, 2 * k)
     # any other executor: chunks of frames, each with the pickled job; a worker
     # unpickles a job once and keeps it for the following chunks
     try:
@@ -321,7 +359,7 @@ def _frames(
     chunk = max(1, min(16, math.ceil(n / (4 * k))))
     chunks = [views[i : i + chunk] for i in range(0, n, chunk)]
     results = _ordered(lambda c: executor.submit(_render_chunk, token, data, c), chunks, 2 * k)
-    return (frame for part in results for frame in part), None
+    return (frame for part in results for frame in part)
 
 
 # -- the public function --------------------------------------------------------------
@@ -382,10 +420,15 @@ def animate(
         :class:`~concurrent.futures.ProcessPoolExecutor` or a Dask
         ``client.get_executor()`` (the scene is scattered to each worker once).
         None: in this process, or in a local process pool of ``workers``
-        processes (default: the CPU count when there are at least
-        :data:`~lgraph.animation.PARALLEL_MIN_FRAMES` frames).
+        processes.  By default (``workers=None``) a run of at least
+        :data:`~lgraph.animation.PARALLEL_MIN_FRAMES` frames renders its
+        first two frames here and hands the rest to a pool of as many
+        processes as CPUs (at most 8) only if, at the second frame's pace,
+        they would take longer than :data:`~lgraph.animation.POOL_MIN_SECONDS`
+        here; the frames are the same wherever they are rendered.
     workers : int, optional
-        Size of the local pool when ``executor`` is None (1: this process).
+        Size of the local pool when ``executor`` is None (1: this process;
+        2 or more: a pool from the first frame on).
     progress : bool
         Show a progress bar when standard error is a terminal.
     frame_format : {"png", "svg", "pdf"}
@@ -433,23 +476,24 @@ def animate(
     job = _Job(scene, window, page, (width, height), kind, options, gray)
 
     bar = _Progress(len(views), progress)
-    pool = frames = None
+    pools: list = []
+    frames = None
     try:
-        frames, pool = _frames(job, views, executor, workers)
+        frames = _frames(job, views, executor, workers, pools)
         for frame in frames:
             writer.add(frame)
             bar.update()
         result = writer.close()
     except BaseException:
         writer.abort()
-        if frames is not None:
+        if frames is not None and hasattr(frames, "close"):
             frames.close()  # cancels the frames not yet started
-        if pool is not None:
+        for pool in pools:
             pool.shutdown(wait=False, cancel_futures=True)
-            pool = None
+        pools.clear()
         raise
     finally:
         bar.close()
-        if pool is not None:
+        for pool in pools:
             pool.shutdown()
     return Path(result)

@@ -275,6 +275,31 @@ def test_executors_give_the_frames_of_a_serial_run(scene, tmp_path):
     assert p.read_bytes() == want
 
 
+def test_the_default_starts_a_pool_only_for_long_runs(scene, tmp_path, monkeypatch):
+    views = lg.orbit(elevation=25, frames=animation.PARALLEL_MIN_FRAMES)
+    started = []
+    local_pool = animation._local_pool
+
+    def counting(job, workers, pools):
+        started.append(workers)
+        return local_pool(job, workers, pools)
+
+    monkeypatch.setattr(animation, "_local_pool", counting)
+    monkeypatch.setattr(animation.os, "cpu_count", lambda: 2)
+    serial = lg.animate(scene, views, tmp_path / "s.png", width=WIDTH, progress=False, workers=1)
+    # a run whose rest is quicker here than a pool's start (any run, with this bound)
+    monkeypatch.setattr(animation, "POOL_MIN_SECONDS", 1e9)
+    quick = lg.animate(scene, views, tmp_path / "q.png", width=WIDTH, progress=False)
+    assert started == [] and quick.read_bytes() == serial.read_bytes()
+    # long runs (here: any run) go to a pool after the first two frames
+    monkeypatch.setattr(animation, "POOL_MIN_SECONDS", 0.0)
+    pooled = lg.animate(scene, views, tmp_path / "p.png", width=WIDTH, progress=False)
+    assert started == [2] and pooled.read_bytes() == serial.read_bytes()
+    # fewer frames than PARALLEL_MIN_FRAMES stay here
+    lg.animate(scene, views[:5], tmp_path / "f.png", width=WIDTH, progress=False)
+    assert started == [2]
+
+
 # -- the command line -------------------------------------------------------------------------
 SCENE_FILE = """
 [projector]

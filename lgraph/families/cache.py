@@ -25,7 +25,7 @@ Safety:
   worker process of a parallel animation fills its own.
 
 Data derived from a cached batch without the view (the renderer's initial
-samples, uniform in each curve's parameter: :func:`derived`) is kept with
+samples, uniform in each curve's parameter: ``derived``) is kept with
 the batch's entry and dropped with it.
 
 Memory: at most :data:`MAX_ENTRIES` family results are kept, least recently

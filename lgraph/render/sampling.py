@@ -125,7 +125,7 @@ class Samples:
 class _Initial:
     """The initial samples of ``batch`` (at ``t``, ``k`` a curve) in its local
     frame: view-independent, so kept with a cached batch
-    (:func:`lgraph.families.cache.derived`)."""
+    (``lgraph.families.cache.derived``)."""
 
     def __init__(self, batch: CurveBatch, t: np.ndarray, k: int) -> None:
         self.batch, self.t, self.k = batch, t, k
