@@ -6,12 +6,16 @@ Run:  python benchmarks/bench_animation.py [--only turntable,workers,memory]
   animated GIF 480 px wide) of the gallery's monkey saddle figure
   (``gallery/extra_monkey_saddle.py``, numeric lines of curvature) and of
   Figure 7.2 (``gallery/fig_7_2_ellipsoid.py``), rendered in this process
-  (``workers=1``), against one cold frame (the figure's own view rendered and
-  saved as a 480 px PNG, geometry cache empty, imports warmed up), in the
-  same process.  Target: at most 5 cold frames.  Also
-  the turntable with the cache turned off (what 24 renders cost before;
-  4 of the frames, times 6) and with the default executor (a local process
-  pool).
+  (``workers=1``), against one cold frame (what a user does for one picture
+  of the same size: the figure's own view rendered and saved as a 480 px
+  PNG, geometry cache empty, imports warmed up), in the same process.
+  Target: at most 5 cold frames.  Cold frame and turntable alternate
+  ``--repeat`` times (default 3); the medians are printed, the ratio as the
+  median of the runs' ratios.  Also the turntable with the cache turned off
+  (what 24 renders cost before; 4 of the frames, times 6, once) and with the
+  default executor (``executor=None, workers=None``: a local process pool
+  only when the run is long enough, see ``lgraph.animation.POOL_MIN_SECONDS``)
+  and with a pool forced (``workers=2``).
 * workers: 72 frames of Figure 7.2 as a GIF, 2 local worker processes vs
   this process; the speed-up.
 * memory: peak resident memory of a child process writing a 360-frame GIF
@@ -22,6 +26,7 @@ Run:  python benchmarks/bench_animation.py [--only turntable,workers,memory]
 from __future__ import annotations
 
 import argparse
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -53,32 +58,51 @@ def _warm_up(tmp: Path) -> None:
     lg.animate(scene, lg.orbit(frames=2), tmp / "warm.gif", progress=False, workers=1)
 
 
-def turntable(stem: str, tmp: Path) -> dict:
+def turntable(stem: str, tmp: Path, repeat: int = 3) -> dict:
     scene, projector = _build(stem)
     views = lg.orbit(elevation=30, frames=24)
-    family_cache.clear()
 
     def one_frame() -> None:  # what a user does for one picture of the same size
         d = scene.render(projector)
         d.save(tmp / "one.png", size=480)
 
-    cold = _timed(one_frame)
-    family_cache.clear()
-    serial = _timed(lambda: lg.animate(scene, views, tmp / "a.gif", progress=False, workers=1))
+    def cold_run(f) -> float:
+        family_cache.clear()
+        return _timed(f)
+
+    runs: dict[str, list[float]] = {"cold": [], "serial": [], "default": [], "pool": []}
+    for _ in range(repeat):
+        runs["cold"].append(cold_run(one_frame))
+        runs["serial"].append(
+            cold_run(lambda: lg.animate(scene, views, tmp / "a.gif", progress=False, workers=1))
+        )
+        runs["default"].append(
+            cold_run(lambda: lg.animate(scene, views, tmp / "c.gif", progress=False))
+        )
+        runs["pool"].append(
+            cold_run(lambda: lg.animate(scene, views, tmp / "d.gif", progress=False, workers=2))
+        )
     family_cache.set_max_entries(0)  # 4 of the 24 frames, times 6: as before the cache
     four = views[::6]
     uncached = 6 * _timed(lambda: lg.animate(scene, four, tmp / "b.gif", progress=False, workers=1))
     family_cache.set_max_entries(family_cache.MAX_ENTRIES)
     family_cache.clear()
-    default = _timed(lambda: lg.animate(scene, views, tmp / "c.gif", progress=False))
+    cold = statistics.median(runs["cold"])
+    serial = statistics.median(runs["serial"])
+
+    def ratio(name: str) -> float:
+        return statistics.median(t / c for t, c in zip(runs[name], runs["cold"]))
+
     return {
         "figure": stem,
         "cold frame s": cold,
         "24 frames s": serial,
         "per later frame s": (serial - cold) / 23,
-        "ratio": serial / cold,
+        "ratio": ratio("serial"),
+        "ratios": "/".join(f"{t / c:.2f}" for t, c in zip(runs["serial"], runs["cold"])),
         "uncached ratio": uncached / cold,
-        "default executor ratio": default / cold,
+        "default executor ratio": ratio("default"),
+        "2-process pool ratio": ratio("pool"),
     }
 
 
@@ -120,6 +144,7 @@ def memory(tmp: Path) -> dict:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--only", default="turntable,workers,memory")
+    p.add_argument("--repeat", type=int, default=3, help="turntable runs (medians)")
     args = p.parse_args()
     only = set(args.only.split(","))
     with tempfile.TemporaryDirectory() as t:
@@ -127,8 +152,9 @@ def main() -> None:
         _warm_up(tmp)
         if "turntable" in only:
             for stem in ("extra_monkey_saddle", "fig_7_2_ellipsoid"):
-                print({k: round(v, 3) if isinstance(v, float) else v
-                       for k, v in turntable(stem, tmp).items()}, flush=True)  # fmt: skip
+                row = turntable(stem, tmp, args.repeat)
+                print({k: round(v, 3) if isinstance(v, float) else v for k, v in row.items()},
+                      flush=True)  # fmt: skip
         if "workers" in only:
             print({k: round(v, 3) for k, v in workers(tmp).items()}, flush=True)
         if "memory" in only:
