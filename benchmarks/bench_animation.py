@@ -15,7 +15,9 @@ Run:  python benchmarks/bench_animation.py [--only turntable,workers,memory]
   (what 24 renders cost before; 4 of the frames, times 6, once) and with the
   default executor (``executor=None, workers=None``: a local process pool
   only when the run is long enough, see ``lgraph.animation.POOL_MIN_SECONDS``)
-  and with a pool forced (``workers=2``).
+  and with a pool forced (``workers=2``), and serially with
+  ``render_options={"tolerance": "pixel"}`` (chords within a quarter of a
+  frame pixel instead of 1e-4 of the figure's diagonal).
 * workers: 72 frames of Figure 7.2 as a GIF, 2 local worker processes vs
   this process; the speed-up.
 * memory: peak resident memory of a child process writing a 360-frame GIF
@@ -70,11 +72,19 @@ def turntable(stem: str, tmp: Path, repeat: int = 3) -> dict:
         family_cache.clear()
         return _timed(f)
 
-    runs: dict[str, list[float]] = {"cold": [], "serial": [], "default": [], "pool": []}
+    runs: dict[str, list[float]] = {k: [] for k in ("cold", "serial", "pixel", "default", "pool")}
+    pixel = {"tolerance": "pixel"}
     for _ in range(repeat):
         runs["cold"].append(cold_run(one_frame))
         runs["serial"].append(
             cold_run(lambda: lg.animate(scene, views, tmp / "a.gif", progress=False, workers=1))
+        )
+        runs["pixel"].append(
+            cold_run(
+                lambda: lg.animate(
+                    scene, views, tmp / "e.gif", progress=False, workers=1, render_options=pixel
+                )
+            )  # fmt: skip
         )
         runs["default"].append(
             cold_run(lambda: lg.animate(scene, views, tmp / "c.gif", progress=False))
@@ -100,6 +110,7 @@ def turntable(stem: str, tmp: Path, repeat: int = 3) -> dict:
         "per later frame s": (serial - cold) / 23,
         "ratio": ratio("serial"),
         "ratios": "/".join(f"{t / c:.2f}" for t, c in zip(runs["serial"], runs["cold"])),
+        "pixel tolerance ratio": ratio("pixel"),
         "uncached ratio": uncached / cold,
         "default executor ratio": ratio("default"),
         "2-process pool ratio": ratio("pool"),

@@ -177,6 +177,61 @@ def test_hidden_lines(scene, tmp_path):
     assert np.array_equal(b[0], _reference(scene, VIEWS[:2], hidden_lines=True)[0])
 
 
+def _max_sagitta(xy: np.ndarray, r: float) -> float:
+    """Largest gap between the chords through ``xy`` (points on a circle of
+    radius ``r`` about the origin) and the circle: r (1 - cos(angle / 2))."""
+    a = np.unwrap(np.arctan2(xy[:, 1], xy[:, 0]))
+    return float((r * (1 - np.cos(np.abs(np.diff(a)) / 2))).max())
+
+
+@pytest.mark.parametrize("width", [120, 480])
+def test_pixel_tolerance_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypatch, width):
+    # the unit circle seen from above (three ways up): its projection is the
+    # unit circle exactly, so each chord's distance from the curve is known
+    scene = lg.Scene()
+    scene.add(lg.Curve(lambda t: np.stack([np.cos(t), np.sin(t), 0 * t], -1), 0, 2 * np.pi))
+    views = [lg.ParallelProjector(direction=(0, 0, 1), up=(np.cos(a), np.sin(a), 0))
+             for a in (0.0, 0.7, 2.0)]  # fmt: skip
+    seen = []
+    render = lg.Scene.render
+
+    def spy(self, view, **kw):
+        d = render(self, view, **kw)
+        seen.append((kw.get("tolerance"), d))
+        return d
+
+    monkeypatch.setattr(lg.Scene, "render", spy)
+    opts = {"tolerance": "pixel"}
+    path = lg.animate(scene, views, tmp_path / "t.gif", width=width, progress=False,
+                      workers=1, render_options=opts)  # fmt: skip
+    h = Image.open(path).size[1]
+    window = animation.frame_window(scene, views)
+    margin = 0.03 * width
+    page = lg.Page(width=float(width), height=float(h), margin=margin)
+    px = min((width - 2 * margin) / (window[2] - window[0]),
+             (h - 2 * margin) / (window[3] - window[1]))  # fmt: skip
+    want = animation.pixel_tolerance(page)
+    assert [t for t, _ in seen] == [want] * 3
+    assert want > 1e-4  # coarser than the render's default at these sizes
+    for view, (_, d) in zip(views, seen):
+        (c,) = [s.xy for s in d.strokes]
+        assert np.allclose(np.hypot(*c.T), 1.0, atol=1e-12)
+        sag = _max_sagitta(c, 1.0) * px  # in output pixels
+        assert sag <= animation.PIXEL_TOLERANCE
+        # the default: 1e-4 of the figure's diagonal (2 sqrt 2), finer and more points
+        (c0,) = [s.xy for s in render(scene, view).strokes]
+        assert _max_sagitta(c0, 1.0) <= 1e-4 * 2 * math.sqrt(2) < sag / px
+        assert len(c0) > len(c)
+    # vector frames keep the render's default
+    seen.clear()
+    lg.animate(scene, views, tmp_path / "t.pdf", progress=False, workers=1, render_options=opts)
+    assert [t for t, _ in seen] == [None] * 3
+    with pytest.raises(ValueError, match='must be a number or "pixel"'):
+        lg.animate(scene, views, tmp_path / "u.gif", progress=False,
+                   render_options={"tolerance": "pixels"})  # fmt: skip
+    assert not (tmp_path / "u.gif").exists()
+
+
 # -- errors and interruptions ---------------------------------------------------------------
 def test_a_failing_frame_leaves_no_file(scene, tmp_path):
     views = [*VIEWS[:2], lg.CentralProjector(eye=(0.1, 0, 0))]  # the eye inside the ellipsoid
