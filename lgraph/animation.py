@@ -65,12 +65,13 @@ __all__ = [
 #: With ``executor=None``, at least this many frames may run in a local process pool.
 PARALLEL_MIN_FRAMES = 24
 
-#: With ``executor=None`` and ``workers=None``, the pool starts only when the
-#: frames left after the first two would take longer than this in this
-#: process (seconds, estimated from the second frame): a pool's start, the
-#: scene sent to each worker and the geometry computed again in each cost
-#: more than a short run gains.
-POOL_MIN_SECONDS = 3.0
+#: With ``executor=None`` and ``workers=None``, a pool of ``k`` processes
+#: starts only when it would save more than this many seconds over the
+#: frames left after the first two: their time here ``R`` (at the second
+#: frame's pace) times ``1 - 1/k``, less the geometry each worker computes
+#: again (the first frame's time less the second's).  A pool's start and the
+#: scene sent to each worker cost about this much.
+POOL_MIN_SECONDS = 1.0
 
 #: Largest frame width in pixels.
 MAX_WIDTH = 8000
@@ -339,14 +340,18 @@ def _pooled(job: _Job, views: list[Projector], workers: int, pools: list) -> Ite
 
 def _adaptive(job: _Job, views: list[Projector], workers: int, pools: list) -> Iterator[Any]:
     """The default for many frames: the first two here (the first fills the
-    geometry cache), then the rest in a pool of ``workers`` processes only
-    if, at the second frame's pace, they would take longer than
-    :data:`POOL_MIN_SECONDS` here.  The frames are the same either way."""
-    yield job.render(views[0])
+    geometry cache), then the rest in a pool of ``workers`` processes only if
+    that saves more than :data:`POOL_MIN_SECONDS`.  The frames are the same
+    either way."""
     t0 = time.perf_counter()
+    yield job.render(views[0])
+    t1 = time.perf_counter()
     yield job.render(views[1])
+    t2 = time.perf_counter()
     rest = views[2:]
-    if (time.perf_counter() - t0) * len(rest) > POOL_MIN_SECONDS:
+    first, later = t1 - t0, t2 - t1
+    saved = later * len(rest) * (1 - 1 / workers) - max(0.0, first - later)
+    if saved > POOL_MIN_SECONDS:
         yield from _pooled(job, rest, workers, pools)
     else:
         yield from (job.render(v) for v in rest)
@@ -456,9 +461,10 @@ def animate(
         processes.  By default (``workers=None``) a run of at least
         :data:`~lgraph.animation.PARALLEL_MIN_FRAMES` frames renders its
         first two frames here and hands the rest to a pool of as many
-        processes as CPUs (at most 8) only if, at the second frame's pace,
-        they would take longer than :data:`~lgraph.animation.POOL_MIN_SECONDS`
-        here; the frames are the same wherever they are rendered.
+        processes as CPUs (at most 8) only if, estimated from the times of
+        those two, the pool saves more than
+        :data:`~lgraph.animation.POOL_MIN_SECONDS`; the frames are the same
+        wherever they are rendered.
     workers : int, optional
         Size of the local pool when ``executor`` is None (1: this process;
         2 or more: a pool from the first frame on).

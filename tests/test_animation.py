@@ -347,7 +347,7 @@ def test_the_default_starts_a_pool_only_for_long_runs(scene, tmp_path, monkeypat
     quick = lg.animate(scene, views, tmp_path / "q.png", width=WIDTH, progress=False)
     assert started == [] and quick.read_bytes() == serial.read_bytes()
     # long runs (here: any run) go to a pool after the first two frames
-    monkeypatch.setattr(animation, "POOL_MIN_SECONDS", 0.0)
+    monkeypatch.setattr(animation, "POOL_MIN_SECONDS", -1e9)
     pooled = lg.animate(scene, views, tmp_path / "p.png", width=WIDTH, progress=False)
     assert started == [2] and pooled.read_bytes() == serial.read_bytes()
     # fewer frames than PARALLEL_MIN_FRAMES stay here
