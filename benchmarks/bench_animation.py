@@ -9,9 +9,9 @@ Run:  python benchmarks/bench_animation.py [--only turntable,workers,memory]
   (``workers=1``), against one cold frame (what a user does for one picture
   of the same size: the figure's own view rendered and saved as a 480 px
   PNG, geometry cache empty, imports warmed up), in the same process.
-  Target: at most 5 cold frames.  Cold frame and turntable alternate
-  ``--repeat`` times (default 3); the medians are printed, the ratio as the
-  median of the runs' ratios.  Also the turntable with the cache turned off
+  Target: at most 5 cold frames.  Every turntable run (each variant
+  ``--repeat`` times, default 3) follows a cold frame; ratios are medians of
+  the runs over the median of all cold frames.  Also the turntable with the cache turned off
   (what 24 renders cost before; 4 of the frames, times 6, once) and with the
   default executor (``executor=None, workers=None``: a local process pool
   only when the run is long enough, see ``lgraph.animation.POOL_MIN_SECONDS``)
@@ -72,26 +72,20 @@ def turntable(stem: str, tmp: Path, repeat: int = 3) -> dict:
         family_cache.clear()
         return _timed(f)
 
-    runs: dict[str, list[float]] = {k: [] for k in ("cold", "serial", "pixel", "default", "pool")}
     pixel = {"tolerance": "pixel"}
+    variants = {
+        "serial": lambda: lg.animate(scene, views, tmp / "a.gif", progress=False, workers=1),
+        "pixel": lambda: lg.animate(
+            scene, views, tmp / "e.gif", progress=False, workers=1, render_options=pixel
+        ),
+        "default": lambda: lg.animate(scene, views, tmp / "c.gif", progress=False),
+        "pool": lambda: lg.animate(scene, views, tmp / "d.gif", progress=False, workers=2),
+    }
+    runs: dict[str, list[float]] = {k: [] for k in ("cold", *variants)}
     for _ in range(repeat):
-        runs["cold"].append(cold_run(one_frame))
-        runs["serial"].append(
-            cold_run(lambda: lg.animate(scene, views, tmp / "a.gif", progress=False, workers=1))
-        )
-        runs["pixel"].append(
-            cold_run(
-                lambda: lg.animate(
-                    scene, views, tmp / "e.gif", progress=False, workers=1, render_options=pixel
-                )
-            )  # fmt: skip
-        )
-        runs["default"].append(
-            cold_run(lambda: lg.animate(scene, views, tmp / "c.gif", progress=False))
-        )
-        runs["pool"].append(
-            cold_run(lambda: lg.animate(scene, views, tmp / "d.gif", progress=False, workers=2))
-        )
+        for name, f in variants.items():  # a cold frame before every run
+            runs["cold"].append(cold_run(one_frame))
+            runs[name].append(cold_run(f))
     family_cache.set_max_entries(0)  # 4 of the 24 frames, times 6: as before the cache
     four = views[::6]
     uncached = 6 * _timed(lambda: lg.animate(scene, four, tmp / "b.gif", progress=False, workers=1))
@@ -101,15 +95,15 @@ def turntable(stem: str, tmp: Path, repeat: int = 3) -> dict:
     serial = statistics.median(runs["serial"])
 
     def ratio(name: str) -> float:
-        return statistics.median(t / c for t, c in zip(runs[name], runs["cold"]))
+        return statistics.median(runs[name]) / cold
 
     return {
         "figure": stem,
         "cold frame s": cold,
+        "cold frames s": "/".join(f"{c:.3f}" for c in sorted(runs["cold"])),
         "24 frames s": serial,
         "per later frame s": (serial - cold) / 23,
         "ratio": ratio("serial"),
-        "ratios": "/".join(f"{t / c:.2f}" for t, c in zip(runs["serial"], runs["cold"])),
         "pixel tolerance ratio": ratio("pixel"),
         "uncached ratio": uncached / cold,
         "default executor ratio": ratio("default"),
