@@ -6,12 +6,20 @@ Run:  python benchmarks/bench_animation.py [--only turntable,workers,memory]
   animated GIF 480 px wide) of the gallery's monkey saddle figure
   (``gallery/extra_monkey_saddle.py``, numeric lines of curvature) and of
   Figure 7.2 (``gallery/fig_7_2_ellipsoid.py``), rendered in this process
-  (``workers=1``), against one cold frame (the figure's own view rendered and
-  saved as a 480 px PNG, geometry cache empty, imports warmed up), in the
-  same process.  Target: at most 5 cold frames.  Also
-  the turntable with the cache turned off (what 24 renders cost before;
-  4 of the frames, times 6) and with the default executor (a local process
-  pool).
+  (``workers=1``), against one cold frame (what a user does for one picture
+  of the same size: the figure's own view rendered and saved as a 480 px
+  PNG, geometry cache empty, imports warmed up), in the same process.
+  Target: at most 5 cold frames.  Every turntable run (each variant
+  ``--repeat`` times, default 3) follows a cold frame; ratios are medians of
+  the runs over the median of all cold frames, in wall-clock time and, for
+  the runs in this process, in CPU time (``time.process_time``: less
+  disturbed by other processes on a loaded machine).  Also the turntable with the cache turned off
+  (what 24 renders cost before; 4 of the frames, times 6, once) and with the
+  default executor (``executor=None, workers=None``: a local process pool
+  only when the run is long enough, see ``lgraph.animation.POOL_MIN_SECONDS``)
+  and with a pool forced (``workers=2``), and serially with
+  ``render_options={"tolerance": "pixel"}`` (chords within a quarter of a
+  frame pixel instead of 1e-4 of the figure's diagonal).
 * workers: 72 frames of Figure 7.2 as a GIF, 2 local worker processes vs
   this process; the speed-up.
 * memory: peak resident memory of a child process writing a 360-frame GIF
@@ -22,6 +30,7 @@ Run:  python benchmarks/bench_animation.py [--only turntable,workers,memory]
 from __future__ import annotations
 
 import argparse
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -53,32 +62,59 @@ def _warm_up(tmp: Path) -> None:
     lg.animate(scene, lg.orbit(frames=2), tmp / "warm.gif", progress=False, workers=1)
 
 
-def turntable(stem: str, tmp: Path) -> dict:
+def turntable(stem: str, tmp: Path, repeat: int = 3) -> dict:
     scene, projector = _build(stem)
     views = lg.orbit(elevation=30, frames=24)
-    family_cache.clear()
 
     def one_frame() -> None:  # what a user does for one picture of the same size
         d = scene.render(projector)
         d.save(tmp / "one.png", size=480)
 
-    cold = _timed(one_frame)
-    family_cache.clear()
-    serial = _timed(lambda: lg.animate(scene, views, tmp / "a.gif", progress=False, workers=1))
+    def cold_run(f) -> float:
+        family_cache.clear()
+        return _timed(f)
+
+    pixel = {"tolerance": "pixel"}
+    variants = {
+        "serial": lambda: lg.animate(scene, views, tmp / "a.gif", progress=False, workers=1),
+        "pixel": lambda: lg.animate(
+            scene, views, tmp / "e.gif", progress=False, workers=1, render_options=pixel
+        ),
+        "default": lambda: lg.animate(scene, views, tmp / "c.gif", progress=False),
+        "pool": lambda: lg.animate(scene, views, tmp / "d.gif", progress=False, workers=2),
+    }
+    runs: dict[str, list[float]] = {k: [] for k in ("cold", *variants)}
+    cpu: dict[str, list[float]] = {k: [] for k in ("cold", *variants)}
+    for _ in range(repeat):
+        for name, f in variants.items():  # a cold frame before every run
+            for key, g in (("cold", one_frame), (name, f)):
+                c0 = time.process_time()
+                runs[key].append(cold_run(g))
+                cpu[key].append(time.process_time() - c0)
     family_cache.set_max_entries(0)  # 4 of the 24 frames, times 6: as before the cache
     four = views[::6]
     uncached = 6 * _timed(lambda: lg.animate(scene, four, tmp / "b.gif", progress=False, workers=1))
     family_cache.set_max_entries(family_cache.MAX_ENTRIES)
     family_cache.clear()
-    default = _timed(lambda: lg.animate(scene, views, tmp / "c.gif", progress=False))
+    cold = statistics.median(runs["cold"])
+    serial = statistics.median(runs["serial"])
+
+    def ratio(name: str, times: dict[str, list[float]] = runs) -> float:
+        return statistics.median(times[name]) / statistics.median(times["cold"])
+
     return {
         "figure": stem,
         "cold frame s": cold,
+        "cold frames s": "/".join(f"{c:.3f}" for c in sorted(runs["cold"])),
         "24 frames s": serial,
         "per later frame s": (serial - cold) / 23,
-        "ratio": serial / cold,
+        "ratio": ratio("serial"),
+        "CPU time ratio": ratio("serial", cpu),
+        "pixel tolerance ratio": ratio("pixel"),
+        "pixel tolerance CPU time ratio": ratio("pixel", cpu),
         "uncached ratio": uncached / cold,
-        "default executor ratio": default / cold,
+        "default executor ratio": ratio("default"),
+        "2-process pool ratio": ratio("pool"),
     }
 
 
@@ -120,6 +156,7 @@ def memory(tmp: Path) -> dict:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--only", default="turntable,workers,memory")
+    p.add_argument("--repeat", type=int, default=3, help="turntable runs (medians)")
     args = p.parse_args()
     only = set(args.only.split(","))
     with tempfile.TemporaryDirectory() as t:
@@ -127,8 +164,9 @@ def main() -> None:
         _warm_up(tmp)
         if "turntable" in only:
             for stem in ("extra_monkey_saddle", "fig_7_2_ellipsoid"):
-                print({k: round(v, 3) if isinstance(v, float) else v
-                       for k, v in turntable(stem, tmp).items()}, flush=True)  # fmt: skip
+                row = turntable(stem, tmp, args.repeat)
+                print({k: round(v, 3) if isinstance(v, float) else v for k, v in row.items()},
+                      flush=True)  # fmt: skip
         if "workers" in only:
             print({k: round(v, 3) for k, v in workers(tmp).items()}, flush=True)
         if "memory" in only:

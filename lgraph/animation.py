@@ -11,9 +11,9 @@ geodesics, ...) is computed once per process (:mod:`lgraph.families.cache`);
 only the contour, the sampling and the visibility are redone per frame.
 
 Frames run in this process, in a local process pool (the default for many
-frames), or on any :class:`concurrent.futures.Executor` -- including a Dask
-cluster's ``client.get_executor()``, to which the scene is scattered once
-per worker.
+frames that take long), or on any :class:`concurrent.futures.Executor` --
+including a Dask cluster's ``client.get_executor()``, to which the scene is
+scattered once per worker.
 
 >>> import os, tempfile
 >>> import lgraph as lg
@@ -49,76 +49,33 @@ import numpy as np
 
 from ._budget import check_frames
 from .drawing import Drawing, Page, Stroke
-from .frame_writers import writer_for
+from .frame_geometry import PIXEL_TOLERANCE, frame_window, pixel_tolerance
+from .frame_writers import GifWriter, writer_for
 from .projectors import Projector
 
-__all__ = ["animate", "frame_window", "PARALLEL_MIN_FRAMES", "MAX_WIDTH"]
+__all__ = [
+    "animate",
+    "frame_window",
+    "pixel_tolerance",
+    "PARALLEL_MIN_FRAMES",
+    "POOL_MIN_SECONDS",
+    "MAX_WIDTH",
+    "PIXEL_TOLERANCE",
+]
 
-#: With ``executor=None``, at least this many frames run in a local process pool.
+#: With ``executor=None``, at least this many frames may run in a local process pool.
 PARALLEL_MIN_FRAMES = 24
+
+#: With ``executor=None`` and ``workers=None``, a pool of ``k`` processes
+#: starts only when it would save more than this many seconds over the
+#: frames left after the first two: their time here ``R`` (at the second
+#: frame's pace) times ``1 - 1/k``, less the geometry each worker computes
+#: again (the first frame's time less the second's).  A pool's start and the
+#: scene sent to each worker cost about this much.
+POOL_MIN_SECONDS = 1.0
 
 #: Largest frame width in pixels.
 MAX_WIDTH = 8000
-
-#: Grid of parameter values per surface (per side) for the common frame window.
-_WINDOW_GRID = 41
-
-
-# -- the frame window -----------------------------------------------------------
-def _scene_points(scene: Any) -> np.ndarray:
-    """World points spread over every node: a parameter grid on each surface's
-    drawn patch, samples along each free curve, the anchors of labels and
-    point marks."""
-    pts = []
-    for node in scene.nodes:
-        if node.surface is not None:
-            d = node.surface.domain
-            u1 = np.linspace(*d.u1, _WINDOW_GRID)
-            u2 = np.linspace(*d.u2, _WINDOW_GRID)
-            g1, g2 = np.meshgrid(u1, u2)
-            p = np.asarray(node.surface.point(g1.ravel(), g2.ravel()), float).reshape(-1, 3)
-        else:
-            b = node.item.batch()
-            n = _WINDOW_GRID * 4
-            idx = np.repeat(np.arange(len(b)), n)
-            s = np.tile(np.linspace(0.0, 1.0, n), len(b))
-            t = b.t0[idx] + s * (b.t1[idx] - b.t0[idx])
-            p = np.asarray(b.evaluate(idx, t)[0], float).reshape(-1, 3)
-        pts.append(node.transform.apply(p))
-    marks = [np.asarray(m.at, float).reshape(1, 3) for m in (*scene.labels, *scene.points)]
-    pts.extend(marks)  # label anchors and point marks (in world coordinates already)
-    if not pts:
-        return np.zeros((1, 3))
-    allp = np.concatenate(pts)
-    return allp[np.isfinite(allp).all(axis=1)]
-
-
-def frame_window(
-    scene: Any, views: Sequence[Projector], pad: float = 0.04
-) -> tuple[float, float, float, float]:
-    """The projection-plane window ``(xmin, ymin, xmax, ymax)`` that holds the
-    scene in every view, padded by ``pad`` times its larger side.
-
-    >>> import lgraph as lg
-    >>> scene = lg.Scene()
-    >>> _ = scene.add(lg.Sphere(1))
-    >>> [round(v, 2) for v in frame_window(scene, lg.orbit(frames=8), pad=0)]
-    [-1.0, -1.0, 1.0, 1.0]
-    """
-    pts = _scene_points(scene)
-    lo = np.full(2, np.inf)
-    hi = np.full(2, -np.inf)
-    for view in views:
-        xy = view.project(pts)
-        xy = xy[np.isfinite(xy).all(axis=1)]
-        if len(xy):
-            lo = np.minimum(lo, xy.min(axis=0))
-            hi = np.maximum(hi, xy.max(axis=0))
-    if not np.isfinite(lo).all():
-        lo, hi = np.zeros(2), np.ones(2)
-    size = max(float((hi - lo).max()), 1e-12)
-    lo, hi = lo - pad * size, hi + pad * size
-    return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
 
 
 # -- one frame --------------------------------------------------------------------
@@ -132,6 +89,7 @@ class _Job:
     size: tuple[int, int]
     kind: str  # "png", "svg", "pdf" (the frame file's bytes) or "drawing"
     render_options: dict
+    gray: bool = False  # grey raster frames may come as "L" images (GIF frames)
 
     def __reduce__(self) -> tuple:
         # the fields with cloudpickle when installed (scenes may hold lambdas);
@@ -159,7 +117,7 @@ class _Job:
         if self.kind == "png":
             from .backends.png import render_image
 
-            im, _ = render_image(d, size=self.size)
+            im, _ = render_image(d, size=self.size, gray=self.gray)
             if not portable:
                 return im
             buf = io.BytesIO()
@@ -270,30 +228,67 @@ def _ordered(submit: Any, items: Sequence[Any], window: int) -> Iterator[Any]:
             fut.cancel()
 
 
+def _local_pool(job: _Job, workers: int, pools: list) -> Any:
+    """A process pool of ``workers`` with ``job`` installed (appended to
+    ``pools``), or None when the scene cannot be pickled (with a warning)."""
+    try:
+        data = _dumps(job)
+    except Exception as e:  # noqa: BLE001 - e.g. a lambda without cloudpickle
+        warnings.warn(
+            f"animate: the scene cannot be sent to worker processes ({e}); rendering "
+            "the frames in this process (pip install cloudpickle to send lambdas)",
+            RuntimeWarning,
+            stacklevel=4,
+        )
+        return None
+    pool = cf.ProcessPoolExecutor(workers, initializer=_install, initargs=(data,))
+    pools.append(pool)
+    return pool
+
+
+def _pooled(job: _Job, views: list[Projector], workers: int, pools: list) -> Iterator[Any]:
+    pool = _local_pool(job, workers, pools)
+    if pool is None:
+        yield from (job.render(v) for v in views)
+    else:
+        yield from _ordered(lambda v: pool.submit(_render_installed, v), views, 2 * workers)
+
+
+def _adaptive(job: _Job, views: list[Projector], workers: int, pools: list) -> Iterator[Any]:
+    """The default for many frames: the first two here (the first fills the
+    geometry cache), then the rest in a pool of ``workers`` processes only if
+    that saves more than :data:`POOL_MIN_SECONDS`.  The frames are the same
+    either way."""
+    t0 = time.perf_counter()
+    yield job.render(views[0])
+    t1 = time.perf_counter()
+    yield job.render(views[1])
+    t2 = time.perf_counter()
+    rest = views[2:]
+    first, later = t1 - t0, t2 - t1
+    saved = later * len(rest) * (1 - 1 / workers) - max(0.0, first - later)
+    if saved > POOL_MIN_SECONDS:
+        yield from _pooled(job, rest, workers, pools)
+    else:
+        yield from (job.render(v) for v in rest)
+
+
 def _frames(
-    job: _Job, views: list[Projector], executor: Any, workers: int | None
-) -> tuple[Iterator[Any], Any]:
-    """The rendered frames in order, and the pool to shut down (or None)."""
+    job: _Job, views: list[Projector], executor: Any, workers: int | None, pools: list
+) -> Iterator[Any]:
+    """The rendered frames in order; local pools started are appended to
+    ``pools`` (for the caller to shut down)."""
     n = len(views)
     if executor is None:
         if workers is None:
-            workers = min(os.cpu_count() or 1, 8) if n >= PARALLEL_MIN_FRAMES else 1
+            k = min(os.cpu_count() or 1, 8)
+            if n >= max(PARALLEL_MIN_FRAMES, 3) and k > 1:
+                return _adaptive(job, views, k, pools)
+            workers = 1
         workers = max(1, min(int(workers), n))
         if workers > 1:
-            try:
-                data = _dumps(job)
-            except Exception as e:  # noqa: BLE001 - e.g. a lambda without cloudpickle
-                warnings.warn(
-                    f"animate: the scene cannot be sent to worker processes ({e}); rendering "
-                    "the frames in this process (pip install cloudpickle to send lambdas)",
-                    RuntimeWarning,
-                    stacklevel=3,
-                )
-            else:
-                pool = cf.ProcessPoolExecutor(workers, initializer=_install, initargs=(data,))
-                frames = _ordered(lambda v: pool.submit(_render_installed, v), views, 2 * workers)
-                return frames, pool
-        return (job.render(v) for v in views), None
+            return _pooled(job, views, workers, pools)
+        return (job.render(v) for v in views)
     if not isinstance(executor, cf.Executor):
         raise TypeError(
             "animate: executor must be a concurrent.futures.Executor (a process or thread "
@@ -301,12 +296,10 @@ def _frames(
         )
     k = _max_workers(executor)
     if isinstance(executor, cf.ThreadPoolExecutor):  # shares this process's scene
-        return _ordered(lambda v: executor.submit(job.render, v), views, 2 * k), None
+        return _ordered(lambda v: executor.submit(job.render, v), views, 2 * k)
     if _is_dask(executor):  # the job goes to every worker once
         scattered = executor._client.scatter(job, broadcast=True, hash=False)
-        return _ordered(
-            lambda v: executor.submit(_render_scattered, scattered, v), views, 2 * k
-        ), None
+        return _ordered(lambda v: executor.submit(_render_scattered, scattered, v), views, 2 * k)
     # any other executor: chunks of frames, each with the pickled job; a worker
     # unpickles a job once and keeps it for the following chunks
     try:
@@ -320,7 +313,7 @@ def _frames(
     chunk = max(1, min(16, math.ceil(n / (4 * k))))
     chunks = [views[i : i + chunk] for i in range(0, n, chunk)]
     results = _ordered(lambda c: executor.submit(_render_chunk, token, data, c), chunks, 2 * k)
-    return (frame for part in results for frame in part), None
+    return (frame for part in results for frame in part)
 
 
 # -- the public function --------------------------------------------------------------
@@ -381,10 +374,16 @@ def animate(
         :class:`~concurrent.futures.ProcessPoolExecutor` or a Dask
         ``client.get_executor()`` (the scene is scattered to each worker once).
         None: in this process, or in a local process pool of ``workers``
-        processes (default: the CPU count when there are at least
-        :data:`~lgraph.animation.PARALLEL_MIN_FRAMES` frames).
+        processes.  By default (``workers=None``) a run of at least
+        :data:`~lgraph.animation.PARALLEL_MIN_FRAMES` frames renders its
+        first two frames here and hands the rest to a pool of as many
+        processes as CPUs (at most 8) only if, estimated from the times of
+        those two, the pool saves more than
+        :data:`~lgraph.animation.POOL_MIN_SECONDS`; the frames are the same
+        wherever they are rendered.
     workers : int, optional
-        Size of the local pool when ``executor`` is None (1: this process).
+        Size of the local pool when ``executor`` is None (1: this process;
+        2 or more: a pool from the first frame on).
     progress : bool
         Show a progress bar when standard error is a terminal.
     frame_format : {"png", "svg", "pdf"}
@@ -393,6 +392,12 @@ def animate(
         Times a GIF/APNG/WebP repeats; 0 for ever.
     render_options : dict, optional
         More keywords for :meth:`Scene.render` (``tolerance``, ``hidden_style``).
+        ``{"tolerance": "pixel"}`` samples raster frames only as finely as
+        their pixels show: every chord within
+        :data:`~lgraph.frame_geometry.PIXEL_TOLERANCE` pixels of its curve
+        (:func:`~lgraph.frame_geometry.pixel_tolerance`; about 4.6e-4 of the diagonal
+        for 480 px frames, 4.6 times the render's default, 1e-4).  Vector
+        frames (PDF, SVG) keep the render's default.
 
     Returns
     -------
@@ -418,6 +423,11 @@ def animate(
         raise ValueError(f"animate: loop must be an integer from 0 to 65535, got {loop!r}")
     options = dict(render_options or {})
     options["hidden_lines"] = bool(hidden_lines)
+    if isinstance(options.get("tolerance"), str) and options["tolerance"] != "pixel":
+        raise ValueError(
+            'animate: render_options["tolerance"] must be a number or "pixel", '
+            f"got {options['tolerance']!r}"
+        )
 
     window = frame_window(scene, views)
     margin = 0.03 * width
@@ -428,26 +438,33 @@ def animate(
     kind = writer.kind
     if kind == "bytes":
         kind = writer.fmt
-    job = _Job(scene, window, page, (width, height), kind, options)
+    if options.get("tolerance") == "pixel":
+        if kind == "png":
+            options["tolerance"] = pixel_tolerance(page)
+        else:  # vector frames can be zoomed: the render's default
+            del options["tolerance"]
+    gray = isinstance(writer, GifWriter)  # frames in one channel may differ in mode
+    job = _Job(scene, window, page, (width, height), kind, options, gray)
 
     bar = _Progress(len(views), progress)
-    pool = frames = None
+    pools: list = []
+    frames = None
     try:
-        frames, pool = _frames(job, views, executor, workers)
+        frames = _frames(job, views, executor, workers, pools)
         for frame in frames:
             writer.add(frame)
             bar.update()
         result = writer.close()
     except BaseException:
         writer.abort()
-        if frames is not None:
+        if frames is not None and hasattr(frames, "close"):
             frames.close()  # cancels the frames not yet started
-        if pool is not None:
+        for pool in pools:
             pool.shutdown(wait=False, cancel_futures=True)
-            pool = None
+        pools.clear()
         raise
     finally:
         bar.close()
-        if pool is not None:
+        for pool in pools:
             pool.shutdown()
     return Path(result)

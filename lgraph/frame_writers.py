@@ -4,8 +4,9 @@ Each writer takes frames one at a time (``add``: a pillow image or PNG bytes
 for raster formats) and keeps only what the format needs to finish the file,
 never the decoded frames:
 
-* :class:`GifWriter` -- animated GIF; every frame is quantized to its own
-  256-colour palette by pillow (fast octree) and spliced in as it comes
+* :class:`GifWriter` -- animated GIF; every colour frame is quantized to its
+  own 256-colour palette by pillow (fast octree), a grey (``"L"``) frame
+  keeps its grey levels exactly, and each is spliced in as it comes
   (pillow's own ``save_all`` holds every frame until the end);
 * :class:`ApngWriter` -- animated PNG: pillow's PNG encoding of each frame,
   its ``IDAT`` data re-chunked as the APNG ``fdAT`` frames;
@@ -128,7 +129,8 @@ def _skip_blocks(data: bytes, pos: int) -> int:
 
 
 def as_image(frame: Any) -> Any:
-    """A raster frame as a pillow RGB(A) image: from an image or PNG bytes."""
+    """A raster frame as a pillow image (RGB, RGBA or grey ``"L"``): from an
+    image or PNG bytes."""
     from PIL import Image
 
     if isinstance(frame, (bytes, bytearray)):
@@ -143,15 +145,29 @@ def _png_bytes(im: Any) -> bytes:
     return buf.getvalue()
 
 
+_INVERT = [255 - g for g in range(256)]
+_DESCENDING_GREYS = bytes(c for g in range(255, -1, -1) for c in (g, g, g))
+
+
 def _gif_frame(frame: Any) -> tuple[tuple[int, int], bytes, bytes]:
     """Encode one frame as GIF with pillow; return its size, its image
     descriptor with a local colour table, and its LZW image data."""
     from PIL import Image
 
-    im = as_image(frame).convert("RGB")
-    pal = im.quantize(colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+    im = as_image(frame)
     buf = io.BytesIO()
-    pal.save(buf, "GIF")
+    if im.mode == "L":
+        # grey frames: the 256 grey levels are the palette, no search needed.
+        # Stored in descending order (index 255 - g for grey g): readers such as
+        # pillow take a GIF whose first palette is the ascending grey ramp for a
+        # greyscale image and then turn later colour frames grey.
+        pal = Image.frombytes("P", im.size, im.point(_INVERT).tobytes())
+        pal.putpalette(_DESCENDING_GREYS)
+        pal.save(buf, "GIF", optimize=False)
+    else:
+        im = im.convert("RGB")
+        pal = im.quantize(colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+        pal.save(buf, "GIF")
     data = buf.getvalue()
     flags = data[10]
     pos = 13

@@ -91,6 +91,36 @@ def test_gif_has_every_frame_at_the_requested_size(scene, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.gif"]
 
 
+def test_grey_gif_frames_are_exact_and_colour_ones_close(scene, tmp_path):
+    # black on white: frames drawn in one grey channel, the GIF keeps every level
+    got, want = _frames(lg.animate(scene, VIEWS, tmp_path / "g.gif", width=WIDTH,
+                                   progress=False)), _reference(scene, VIEWS)  # fmt: skip
+    assert all(np.array_equal(g, w) for g, w in zip(got, want))
+    # red hidden lines in some frames only (a graph seen from above hides
+    # nothing): colour and grey frames mixed
+    scene = lg.Scene()
+    scene.add(lg.HyperbolicParaboloid(1, 1), lg.ParameterLines(5, 5))
+    red = lg.Style(color="red", dash=(2, 1.5))
+    views = [lg.ParallelProjector(direction=(0, 0, 1)), *lg.orbit(elevation=10, frames=3)[:2]]
+    opts = {"hidden_style": red}
+    path = lg.animate(scene, views, tmp_path / "c.gif", width=WIDTH, hidden_lines=True,
+                      render_options=opts, progress=False)  # fmt: skip
+    got = _frames(path)
+    window = animation.frame_window(scene, views)
+    m = 0.03 * WIDTH
+    h = got[0].shape[0]
+    for g, v in zip(got, views):
+        d = scene.render(v, hidden_lines=True, hidden_style=red)
+        d = lg.Drawing(d.strokes, page=lg.Page(width=float(WIDTH), height=float(h), margin=m),
+                       window=window)  # fmt: skip
+        buf = io.BytesIO()
+        d.save(buf, format="png", size=(WIDTH, h))
+        w = np.asarray(Image.open(io.BytesIO(buf.getvalue())).convert("RGB"), dtype=int)
+        assert np.abs(g - w).mean() < 1.0 and np.abs(g - w).max() < 40
+    reds = [((f[..., 0] - f[..., 2]) > 60).sum() for f in got]
+    assert reds[0] == 0 and reds[1] > 0 and reds[2] > 0
+
+
 @pytest.mark.parametrize("name", ["t.png", "t.apng", "t.webp"])
 def test_apng_and_webp_are_lossless(scene, tmp_path, name):
     path = lg.animate(scene, VIEWS, tmp_path / name, width=WIDTH, fps=8, progress=False)
@@ -145,6 +175,61 @@ def test_hidden_lines(scene, tmp_path):
                            hidden_lines=True))  # fmt: skip
     assert (b[0].min(axis=2) < 250).sum() > (a[0].min(axis=2) < 250).sum()
     assert np.array_equal(b[0], _reference(scene, VIEWS[:2], hidden_lines=True)[0])
+
+
+def _max_sagitta(xy: np.ndarray, r: float) -> float:
+    """Largest gap between the chords through ``xy`` (points on a circle of
+    radius ``r`` about the origin) and the circle: r (1 - cos(angle / 2))."""
+    a = np.unwrap(np.arctan2(xy[:, 1], xy[:, 0]))
+    return float((r * (1 - np.cos(np.abs(np.diff(a)) / 2))).max())
+
+
+@pytest.mark.parametrize("width", [120, 480])
+def test_pixel_tolerance_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypatch, width):
+    # the unit circle seen from above (three ways up): its projection is the
+    # unit circle exactly, so each chord's distance from the curve is known
+    scene = lg.Scene()
+    scene.add(lg.Curve(lambda t: np.stack([np.cos(t), np.sin(t), 0 * t], -1), 0, 2 * np.pi))
+    views = [lg.ParallelProjector(direction=(0, 0, 1), up=(np.cos(a), np.sin(a), 0))
+             for a in (0.0, 0.7, 2.0)]  # fmt: skip
+    seen = []
+    render = lg.Scene.render
+
+    def spy(self, view, **kw):
+        d = render(self, view, **kw)
+        seen.append((kw.get("tolerance"), d))
+        return d
+
+    monkeypatch.setattr(lg.Scene, "render", spy)
+    opts = {"tolerance": "pixel"}
+    path = lg.animate(scene, views, tmp_path / "t.gif", width=width, progress=False,
+                      workers=1, render_options=opts)  # fmt: skip
+    h = Image.open(path).size[1]
+    window = animation.frame_window(scene, views)
+    margin = 0.03 * width
+    page = lg.Page(width=float(width), height=float(h), margin=margin)
+    px = min((width - 2 * margin) / (window[2] - window[0]),
+             (h - 2 * margin) / (window[3] - window[1]))  # fmt: skip
+    want = animation.pixel_tolerance(page)
+    assert [t for t, _ in seen] == [want] * 3
+    assert want > 1e-4  # coarser than the render's default at these sizes
+    for view, (_, d) in zip(views, seen):
+        (c,) = [s.xy for s in d.strokes]
+        assert np.allclose(np.hypot(*c.T), 1.0, atol=1e-12)
+        sag = _max_sagitta(c, 1.0) * px  # in output pixels
+        assert sag <= animation.PIXEL_TOLERANCE
+        # the default: 1e-4 of the figure's diagonal (2 sqrt 2), finer and more points
+        (c0,) = [s.xy for s in render(scene, view).strokes]
+        assert _max_sagitta(c0, 1.0) <= 1e-4 * 2 * math.sqrt(2) < sag / px
+        assert len(c0) > len(c)
+    # vector frames keep the render's default
+    seen.clear()
+    lg.animate(scene, views, tmp_path / "t.pdf", progress=False, workers=1, render_options=opts)
+    assert [t for t, _ in seen] == [None] * 3
+    with pytest.raises(ValueError, match='must be a number or "pixel"'):
+        lg.animate(scene, views, tmp_path / "u.gif", progress=False,
+                   render_options={"tolerance": "pixels"})  # fmt: skip
+    assert not (tmp_path / "u.gif").exists()
 
 
 # -- errors and interruptions ---------------------------------------------------------------
@@ -243,6 +328,31 @@ def test_executors_give_the_frames_of_a_serial_run(scene, tmp_path):
         assert p.read_bytes() == want
     p = lg.animate(scene, views, tmp_path / "w.png", width=WIDTH, progress=False, workers=2)
     assert p.read_bytes() == want
+
+
+def test_the_default_starts_a_pool_only_for_long_runs(scene, tmp_path, monkeypatch):
+    views = lg.orbit(elevation=25, frames=animation.PARALLEL_MIN_FRAMES)
+    started = []
+    local_pool = animation._local_pool
+
+    def counting(job, workers, pools):
+        started.append(workers)
+        return local_pool(job, workers, pools)
+
+    monkeypatch.setattr(animation, "_local_pool", counting)
+    monkeypatch.setattr(animation.os, "cpu_count", lambda: 2)
+    serial = lg.animate(scene, views, tmp_path / "s.png", width=WIDTH, progress=False, workers=1)
+    # a run whose rest is quicker here than a pool's start (any run, with this bound)
+    monkeypatch.setattr(animation, "POOL_MIN_SECONDS", 1e9)
+    quick = lg.animate(scene, views, tmp_path / "q.png", width=WIDTH, progress=False)
+    assert started == [] and quick.read_bytes() == serial.read_bytes()
+    # long runs (here: any run) go to a pool after the first two frames
+    monkeypatch.setattr(animation, "POOL_MIN_SECONDS", -1e9)
+    pooled = lg.animate(scene, views, tmp_path / "p.png", width=WIDTH, progress=False)
+    assert started == [2] and pooled.read_bytes() == serial.read_bytes()
+    # fewer frames than PARALLEL_MIN_FRAMES stay here
+    lg.animate(scene, views[:5], tmp_path / "f.png", width=WIDTH, progress=False)
+    assert started == [2]
 
 
 # -- the command line -------------------------------------------------------------------------

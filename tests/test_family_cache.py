@@ -187,3 +187,75 @@ def test_unhashable_families_are_cached_by_identity():
 def test_new_view_independent_families_are_cached():
     for fam in (lg.LevelLines(5), lg.ParabolicLines(), lg.SelfIntersection()):
         assert not family_cache.is_view_dependent(fam), fam
+
+
+@attrs.frozen
+class CountingPoints(Family):
+    """Parameter lines whose batches count the points they evaluate."""
+
+    points: list = attrs.field(factory=list, eq=False)
+    view_dependent = False
+
+    def batches(self, surface, projector):
+        out = []
+        for b in lg.ParameterLines(3, 4).batches(surface, projector):
+
+            def evaluate(idx, t, f=b.evaluate):
+                self.points.append(len(t))
+                return f(idx, t)
+
+            out.append(attrs.evolve(b, evaluate=evaluate))
+        return out
+
+
+def test_initial_samples_of_cached_batches_are_evaluated_once():
+    fam = CountingPoints()
+    scene = lg.Scene()
+    scene.add(lg.Ellipsoid(3, 2, 1.3), fam, transform=lg.rotate("x", 20))
+    first = scene.render(VIEWS[0])
+    initial = fam.points[0]  # the first call: every curve's initial samples
+    assert initial == 7 * lg._tolerance.INITIAL_SAMPLES
+    for v in VIEWS[1:]:
+        n = len(fam.points)
+        scene.render(v)
+        # later views evaluate only refinement and flip points, never all of them again
+        assert len(fam.points) > n and initial not in fam.points[n:]
+    # the kept samples are those an uncached render computes: identical strokes
+    family_cache.set_max_entries(0)
+    _same(first, scene.render(VIEWS[0]))
+    for v in VIEWS[1:]:
+        family_cache.set_max_entries(family_cache.MAX_ENTRIES)
+        cached = scene.render(v)
+        family_cache.set_max_entries(0)
+        _same(cached, scene.render(v))
+
+
+def test_derived_data_lives_and_dies_with_its_entry():
+    calls = []
+
+    def compute():
+        calls.append(1)
+        return len(calls)
+
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(2, 3))
+    scene.add(lg.Sphere(1), lg.ParameterLines(4, 3), transform=lg.translate(3, 0, 0))
+    node = scene.nodes[0]
+    (batch,) = family_cache.family_batches(node, 0, node.families[0], None)
+    assert family_cache.derived(batch, "k", compute) == 1
+    assert family_cache.derived(batch, "k", compute) == 1  # kept
+    assert family_cache.derived(batch, "other", compute) == 2  # keys apart
+    # a batch the cache does not hold (a contour, a copy): computed every time
+    copy = attrs.evolve(batch)
+    assert family_cache.derived(copy, "k", compute) == 3
+    assert family_cache.derived(copy, "k", compute) == 4
+    # evicted with its entry
+    family_cache.set_max_entries(1)
+    other = scene.nodes[1]
+    family_cache.family_batches(other, 0, other.families[0], None)
+    assert family_cache.derived(batch, "k", compute) == 5
+    family_cache.set_max_entries(10)
+    (batch,) = family_cache.family_batches(node, 0, node.families[0], None)
+    family_cache.derived(batch, "k", compute)
+    family_cache.clear()  # and with clear()
+    assert family_cache.derived(batch, "k", compute) == 7

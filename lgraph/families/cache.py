@@ -24,12 +24,17 @@ Safety:
 * The cache lives in the process: it is not pickled with a scene, and each
   worker process of a parallel animation fills its own.
 
+Data derived from a cached batch without the view (the renderer's initial
+samples, uniform in each curve's parameter: ``derived``) is kept with
+the batch's entry and dropped with it.
+
 Memory: at most :data:`MAX_ENTRIES` family results are kept, least recently
 used evicted first (an entry keeps its surface alive until then).  One entry
 holds the curves of one family on one surface: for closed forms a few
 closures and parameters, for numeric lines the integrator's dense output
-(0.5 MB for the 28 lines of curvature of the gallery's monkey saddle), so
-the cache stays bounded by ``MAX_ENTRIES`` times that.  :func:`clear`
+(0.5 MB for the 28 lines of curvature of the gallery's monkey saddle), plus
+the initial samples (33 points a curve, 1.3 kB), so the cache stays bounded
+by ``MAX_ENTRIES`` times that.  :func:`clear`
 empties it; :func:`set_max_entries` changes the bound (0 turns caching off).
 
 >>> import lgraph as lg
@@ -41,6 +46,7 @@ from __future__ import annotations
 
 import threading
 from collections import OrderedDict
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -51,6 +57,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "family_batches",
+    "derived",
     "is_view_dependent",
     "clear",
     "info",
@@ -66,6 +73,8 @@ _max_entries = MAX_ENTRIES
 # LRU order over (id of the surface, family key) -> (surface, family, list of batches)
 _entries: OrderedDict[tuple[int, Any], tuple[Any, Any, list]] = OrderedDict()
 _stats = {"hits": 0, "misses": 0}
+# id of a batch held by an entry -> (the batch, {key: data derived from it})
+_derived: dict[int, tuple[Any, dict[Any, Any]]] = {}
 
 
 def _family_key(family: Family) -> Any:
@@ -107,17 +116,53 @@ def family_batches(
     with _lock:
         # the entry holds its surface and family: their ids cannot be reused
         # while the entry lives
+        old = _entries.pop(key, None)  # computed twice by two threads: keep one
+        if old is not None:
+            _forget(old)
         _entries[key] = (surface, family, result)
-        _entries.move_to_end(key)
-        while len(_entries) > _max_entries:
-            _entries.popitem(last=False)
+        for batch in result:
+            _derived[id(batch)] = (batch, {})
+        _trim(_max_entries)
     return result
+
+
+def _forget(entry: tuple[Any, Any, list]) -> None:
+    for batch in entry[2]:
+        _derived.pop(id(batch), None)
+
+
+def _trim(n: int) -> None:
+    """Evict the least recently used entries beyond ``n`` (lock held)."""
+    while len(_entries) > n:
+        _forget(_entries.popitem(last=False)[1])
+
+
+def derived(batch: CurveBatch, key: Any, compute: Callable[[], Any]) -> Any:
+    """``compute()``, kept with ``batch``'s entry under ``key`` when ``batch`` is
+    one this cache holds (a view-independent family's), so that it is computed
+    once; computed afresh for any other batch.  ``compute`` must not depend on
+    the view, and the result must not be modified.
+
+    >>> derived(object(), "k", lambda: 42)  # not a cached batch: computed each time
+    42
+    """
+    with _lock:
+        slot = _derived.get(id(batch))
+        if slot is not None and slot[0] is batch and key in slot[1]:
+            return slot[1][key]
+    value = compute()
+    with _lock:
+        slot = _derived.get(id(batch))
+        if slot is not None and slot[0] is batch:
+            slot[1][key] = value
+    return value
 
 
 def clear() -> None:
     """Empty the cache and reset its counters."""
     with _lock:
         _entries.clear()
+        _derived.clear()
         _stats["hits"] = _stats["misses"] = 0
 
 
@@ -140,5 +185,4 @@ def set_max_entries(n: int) -> None:
         raise ValueError(f"set_max_entries: n must be a non-negative integer, got {n!r}")
     with _lock:
         _max_entries = n
-        while len(_entries) > n:
-            _entries.popitem(last=False)
+        _trim(n)

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from .. import _tolerance as tol
+from ..families import cache as family_cache
 from ..geometry.transforms import Transform
 from ..projectors import Projector
 from ..surfaces._base import OFF
@@ -71,8 +72,17 @@ class Samples:
         frac = np.linspace(0.0, 1.0, k)
         self.t = (self.t0[:, None] + (self.t1 - self.t0)[:, None] * frac).ravel()
         self.no_uv: set[int] = set()  # parts whose curves have no parameters
-        self.xyz, self.uv, self.xy = self.evaluate(self.cid, self.t, projector)
         n = len(self.t)
+        self.xyz, self.uv = np.empty((n, 3)), np.full((n, 2), np.nan)
+        for p, ((_, b, tr), first) in enumerate(zip(batches, firsts)):
+            rows = slice(first * k, (first + len(b)) * k)
+            x, u = family_cache.derived(b, ("initial samples", k), _Initial(b, self.t[rows], k))
+            self.xyz[rows] = x if tr.is_identity else tr.apply(x)
+            if u is None:
+                self.no_uv.add(p)
+            else:
+                self.uv[rows] = u
+        self.xy = projector.project(self.xyz)
         self.hidden = np.zeros(n, dtype=bool)
         self.cause = np.full(n, -1, dtype=np.int64)
         self.fresh = np.ones(n, dtype=bool)
@@ -110,6 +120,21 @@ class Samples:
         """Owner nodes and ownership codes of samples ``rows``."""
         c = self.cid[rows]
         return self.owner[c], self.kind[c]
+
+
+class _Initial:
+    """The initial samples of ``batch`` (at ``t``, ``k`` a curve) in its local
+    frame: view-independent, so kept with a cached batch
+    (``lgraph.families.cache.derived``)."""
+
+    def __init__(self, batch: CurveBatch, t: np.ndarray, k: int) -> None:
+        self.batch, self.t, self.k = batch, t, k
+
+    def __call__(self) -> tuple[np.ndarray, np.ndarray | None]:
+        idx = np.repeat(np.arange(len(self.batch)), self.k)
+        x, u = self.batch.evaluate(idx, self.t)
+        x = np.asarray(x, dtype=float).reshape(-1, 3)
+        return x, None if u is None else np.asarray(u, float).reshape(-1, 2)
 
 
 def seg_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:

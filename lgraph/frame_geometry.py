@@ -1,0 +1,108 @@
+"""Where animation frames look: the common window of all views, and the
+chord tolerance a raster frame's pixels can show.
+
+Every frame of an animation shows the same window of the projection plane
+(the union, over all views, of the scene's projected extent), so the figure
+keeps its place and scale (:func:`~lgraph.animation.frame_window`).  A
+raster frame of a known size can then be sampled only as finely as its
+pixels show (:func:`pixel_tolerance`, used by ``lg.animate(...,
+render_options={"tolerance": "pixel"})``).  No derivation of
+docs/mathematics.rst: bounding boxes and a scale factor.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from .drawing import Page
+from .projectors import Projector
+
+__all__ = ["frame_window", "pixel_tolerance", "PIXEL_TOLERANCE"]
+
+#: ``render_options={"tolerance": "pixel"}``: raster frames are sampled so that
+#: every chord stays within this many output pixels of its curve (instead of
+#: the render's default, ``CHORD_TOLERANCE`` of the figure's diagonal: 0.06 px
+#: in a 480 px frame).
+PIXEL_TOLERANCE = 0.25
+
+#: Grid of parameter values per surface (per side) for the common frame window.
+_WINDOW_GRID = 41
+
+
+def _scene_points(scene: Any) -> np.ndarray:
+    """World points spread over every node: a parameter grid on each surface's
+    drawn patch, samples along each free curve, the anchors of labels and
+    point marks."""
+    pts = []
+    for node in scene.nodes:
+        if node.surface is not None:
+            d = node.surface.domain
+            u1 = np.linspace(*d.u1, _WINDOW_GRID)
+            u2 = np.linspace(*d.u2, _WINDOW_GRID)
+            g1, g2 = np.meshgrid(u1, u2)
+            p = np.asarray(node.surface.point(g1.ravel(), g2.ravel()), float).reshape(-1, 3)
+        else:
+            b = node.item.batch()
+            n = _WINDOW_GRID * 4
+            idx = np.repeat(np.arange(len(b)), n)
+            s = np.tile(np.linspace(0.0, 1.0, n), len(b))
+            t = b.t0[idx] + s * (b.t1[idx] - b.t0[idx])
+            p = np.asarray(b.evaluate(idx, t)[0], float).reshape(-1, 3)
+        pts.append(node.transform.apply(p))
+    marks = [np.asarray(m.at, float).reshape(1, 3) for m in (*scene.labels, *scene.points)]
+    pts.extend(marks)  # label anchors and point marks (in world coordinates already)
+    if not pts:
+        return np.zeros((1, 3))
+    allp = np.concatenate(pts)
+    return allp[np.isfinite(allp).all(axis=1)]
+
+
+def frame_window(
+    scene: Any, views: Sequence[Projector], pad: float = 0.04
+) -> tuple[float, float, float, float]:
+    """The projection-plane window ``(xmin, ymin, xmax, ymax)`` that holds the
+    scene in every view, padded by ``pad`` times its larger side.
+
+    >>> import lgraph as lg
+    >>> scene = lg.Scene()
+    >>> _ = scene.add(lg.Sphere(1))
+    >>> [round(v, 2) for v in frame_window(scene, lg.orbit(frames=8), pad=0)]
+    [-1.0, -1.0, 1.0, 1.0]
+    """
+    pts = _scene_points(scene)
+    lo = np.full(2, np.inf)
+    hi = np.full(2, -np.inf)
+    for view in views:
+        xy = view.project(pts)
+        xy = xy[np.isfinite(xy).all(axis=1)]
+        if len(xy):
+            lo = np.minimum(lo, xy.min(axis=0))
+            hi = np.maximum(hi, xy.max(axis=0))
+    if not np.isfinite(lo).all():
+        lo, hi = np.zeros(2), np.ones(2)
+    size = max(float((hi - lo).max()), 1e-12)
+    lo, hi = lo - pad * size, hi + pad * size
+    return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+
+def pixel_tolerance(page: Page) -> float:
+    """The render tolerance (a fraction of the figure's diagonal) that keeps
+    every chord within :data:`PIXEL_TOLERANCE` pixels of its curve in a
+    raster frame of ``page`` (width and height in pixels), whose inner part
+    shows the common frame window.
+
+    The figure lies inside the window, so its diagonal is at most the
+    window's, which spans the page inside its margins.
+
+    >>> from lgraph.drawing import Page
+    >>> round(pixel_tolerance(Page(width=480.0, height=343.0, margin=14.4)) * 1e4, 2)
+    4.55
+    """
+    from . import _tolerance as tol
+
+    inner = math.hypot(page.width - 2 * page.margin, page.height - 2 * page.margin)
+    return min(0.1, max(tol.MIN_CHORD_TOLERANCE, PIXEL_TOLERANCE / inner))
