@@ -151,3 +151,10 @@ MAX_INTERSECTION_GRID = 1000
 MAX_MARCH_STEPS = 200_000
 #: Most frames of an animation or orbit.
 MAX_FRAMES = 100_000
+
+# -- animation frames (lgraph.frame_geometry) -----------------------------------
+#: ``render_options={"tolerance": "pixel"}``: raster frames are sampled so that
+#: every chord stays within this many output pixels of its curve (instead of
+#: the render's default, ``CHORD_TOLERANCE`` of the figure's diagonal: 0.06 px
+#: in a 480 px frame).
+PIXEL_TOLERANCE = 0.25

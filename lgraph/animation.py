@@ -48,9 +48,10 @@ import attrs
 import numpy as np
 
 from ._budget import check_frames
-from .drawing import Drawing, Page, Stroke
+from .drawing import Drawing, Stroke
 from .frame_geometry import PIXEL_TOLERANCE, frame_window, pixel_tolerance
 from .frame_writers import GifWriter, writer_for
+from .page import Page
 from .projectors import Projector
 
 __all__ = [

@@ -18,16 +18,12 @@ from typing import Any
 
 import numpy as np
 
-from .drawing import Page
+from ._tolerance import PIXEL_TOLERANCE
+from .page import Page
 from .projectors import Projector
 
 __all__ = ["frame_window", "pixel_tolerance", "PIXEL_TOLERANCE"]
 
-#: ``render_options={"tolerance": "pixel"}``: raster frames are sampled so that
-#: every chord stays within this many output pixels of its curve (instead of
-#: the render's default, ``CHORD_TOLERANCE`` of the figure's diagonal: 0.06 px
-#: in a 480 px frame).
-PIXEL_TOLERANCE = 0.25
 
 #: Grid of parameter values per surface (per side) for the common frame window.
 _WINDOW_GRID = 41
@@ -98,7 +94,7 @@ def pixel_tolerance(page: Page) -> float:
     The figure lies inside the window, so its diagonal is at most the
     window's, which spans the page inside its margins.
 
-    >>> from lgraph.drawing import Page
+    >>> from lgraph.page import Page
     >>> round(pixel_tolerance(Page(width=480.0, height=343.0, margin=14.4)) * 1e4, 2)
     4.55
     """

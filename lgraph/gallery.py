@@ -224,7 +224,8 @@ def render_figure(result: Any, tolerance: float | None = None) -> Any:
     to right with a small gap.  ``tolerance`` (if given) overrides the chord
     tolerance of panels that do not set their own.
     """
-    from .drawing import Drawing, Page
+    from .drawing import Drawing
+    from .page import Page
 
     drawings = []
     for scene, projector, kwargs in _panels(result):

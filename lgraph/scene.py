@@ -24,10 +24,11 @@ import attrs
 
 from ._tolerance import CHORD_TOLERANCE
 from .curves import Curve, CurveOnSurface
-from .drawing import Drawing, Page
+from .drawing import Drawing
 from .families import FAMILIES, Contour, Family
 from .families.cache import family_batches
 from .geometry.transforms import IDENTITY, Transform
+from .page import Page
 from .style import OUTLINE, Style
 from .surfaces._base import Surface
 

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from ..drawing import dash_polyline
+from ..dashes import dash_polyline
 from ._common import background_rgb, check_options, page_runs, positive_finite
 
 __all__ = ["write_png", "render_image", "MAX_SIDE"]

@@ -27,10 +27,11 @@ import numpy as np
 
 from .. import _tolerance as tol
 from .._validate import as_number
-from ..drawing import HIDDEN_STYLE, Drawing, Page, Stroke, Style
+from ..drawing import Drawing, Stroke
 from ..geometry.transforms import Transform
+from ..page import Page, _page
 from ..projectors import CentralProjector, ParallelProjector, Projector
-from ..style import OUTLINE
+from ..style import HIDDEN_STYLE, OUTLINE, Style
 from .flips import locate_flips, seed_crossings
 from .occlusion import Occlusion, twin_groups
 from .sampling import Samples, check_points, refine
@@ -274,7 +275,6 @@ def _checked_page(page: object) -> Page | None:
     """``page`` as a Page (or None), checked before any rendering."""
     if page is None or isinstance(page, Page):
         return page
-    from ..drawing import _page
 
     try:
         return _page(page)

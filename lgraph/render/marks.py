@@ -17,8 +17,9 @@ from typing import Any
 import numpy as np
 
 from .._own import OFF
-from ..drawing import PlacedLabel, Stroke, Style
+from ..drawing import PlacedLabel, Stroke
 from ..projectors import CentralProjector, Projector
+from ..style import Style
 
 __all__ = ["place_marks", "auto_anchor"]
 

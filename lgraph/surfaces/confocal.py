@@ -449,8 +449,8 @@ class TripleOrthogonalSystem:
         """Add every member (with ``families``; none given: contour only) and the
         intersection curves (drawn with ``curve_style``, default 1.8 times wider).
         ``hides=False`` makes the members transparent (nothing hidden)."""
-        from ..drawing import Style
         from ..families import Contour
+        from ..style import Style
 
         nodes = []
         for m in self.members:
