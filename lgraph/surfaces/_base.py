@@ -198,14 +198,22 @@ class Surface:
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Axis-aligned box ``(lo, hi)`` containing the drawn patch (local coords).
 
-        The default samples the domain and pads by a few percent.
+        The default samples the domain on a 65 x 65 grid and pads by a few
+        percent, once per surface object (surfaces are immutable; see
+        :mod:`!lgraph.surfaces._memo`).
         """
-        d = self.domain
-        u1, u2 = np.meshgrid(np.linspace(*d.u1, 65), np.linspace(*d.u2, 65), indexing="ij")
-        p = self.point(u1, u2).reshape(-1, 3)
-        lo, hi = p.min(axis=0), p.max(axis=0)
-        pad = 0.05 * (hi - lo).max() + 1e-12
-        return lo - pad, hi + pad
+        from ._memo import per_surface
+
+        def sampled() -> tuple[np.ndarray, np.ndarray]:
+            d = self.domain
+            u1, u2 = np.meshgrid(np.linspace(*d.u1, 65), np.linspace(*d.u2, 65), indexing="ij")
+            p = self.point(u1, u2).reshape(-1, 3)
+            lo, hi = p.min(axis=0), p.max(axis=0)
+            pad = 0.05 * (hi - lo).max() + 1e-12
+            return lo - pad, hi + pad
+
+        lo, hi = per_surface(self, "bounds", sampled)
+        return lo.copy(), hi.copy()
 
     @property
     def size(self) -> float:

@@ -11,12 +11,12 @@ ray may meet, where :mod:`._numeric_hits` starts Newton's method.
 
 from __future__ import annotations
 
-import weakref
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .._tolerance import HIT_CHUNK_RAYS, HIT_MAX_CANDIDATES
+from ._memo import per_surface
 
 if TYPE_CHECKING:
     from ._base import Surface
@@ -109,23 +109,9 @@ def _check_regular(surface: Surface, P: np.ndarray, S: np.ndarray) -> None:
         )
 
 
-_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-_ID_CACHE: dict[int, tuple[Any, _Hierarchy]] = {}
-
-
 def _hierarchy(surface: Surface) -> _Hierarchy:
-    try:
-        h = _CACHE.get(surface)
-        if h is None:
-            h = _CACHE[surface] = _Hierarchy(surface)
-        return h
-    except TypeError:  # unhashable or not weak-referenceable: cache by identity
-        entry = _ID_CACHE.get(id(surface))
-        if entry is None or entry[0] is not surface:
-            if len(_ID_CACHE) > 64:
-                _ID_CACHE.clear()
-            entry = _ID_CACHE[id(surface)] = (surface, _Hierarchy(surface))
-        return entry[1]
+    """The surface's hierarchy, built once per surface object."""
+    return per_surface(surface, "hierarchy", lambda: _Hierarchy(surface))
 
 
 def _inverse(v: np.ndarray) -> np.ndarray:

@@ -21,7 +21,8 @@ from scipy.interpolate import CubicSpline, make_interp_spline
 
 from .._own import CONTOUR, ON
 from ..geometry.vectors import cross as _cross
-from ._zero_set import CONTOUR_GRID, zero_set
+from ._memo import per_surface
+from ._zero_set import CONTOUR_GRID, grid_parameters, zero_set
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
@@ -42,8 +43,14 @@ def view_cosine(surface: Surface, projector: Projector, u1: Any, u2: Any) -> np.
     u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
     x1, x2 = surface.derivatives(u1, u2)
     n = _cross(x1, x2)
+    return _cosine(n, surface.point(u1, u2) if _is_central(projector) else None, projector)
+
+
+def _cosine(n: np.ndarray, p: np.ndarray | None, projector: Projector) -> np.ndarray:
+    """``N . w / |w|`` from the normal ``n`` (any length) and, for a central
+    view, the point ``p``."""
     if _is_central(projector):
-        w = projector.eye - surface.point(u1, u2)
+        w = projector.eye - p
     else:
         w = np.broadcast_to(projector.frame[2], n.shape)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -99,7 +106,13 @@ def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) ->
     def fun(u1: Any, u2: Any) -> np.ndarray:
         return view_cosine(surface, projector, u1, u2)
 
-    curves = zero_set(surface, fun, grid)
+    def grid_geometry() -> tuple[np.ndarray, np.ndarray]:  # the same for every view
+        U1, U2 = grid_parameters(surface, grid)
+        x1, x2 = surface.derivatives(U1, U2)
+        return _cross(x1, x2), surface.point(U1, U2)
+
+    n, p = per_surface(surface, ("contour grid", grid), grid_geometry)
+    curves = zero_set(surface, fun, grid, values=_cosine(n, p, projector))
     return [_contour_batch(surface, projector, curves)] if curves else []
 
 

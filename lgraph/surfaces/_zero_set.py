@@ -60,16 +60,25 @@ def _edge_roots(
     return a + t[:, None] * d
 
 
-def zero_set(surface: Surface, fun: Any, grid: int = CONTOUR_GRID) -> list[tuple[np.ndarray, bool]]:
+def grid_parameters(surface: Surface, grid: int = CONTOUR_GRID) -> tuple[np.ndarray, np.ndarray]:
+    """``U1, U2`` (``grid x grid``, ``indexing="ij"``): the nodes :func:`zero_set` marches on."""
+    a1, a2 = _grid_axis(surface, 0, grid), _grid_axis(surface, 1, grid)
+    return np.meshgrid(a1, a2, indexing="ij")
+
+
+def zero_set(
+    surface: Surface, fun: Any, grid: int = CONTOUR_GRID, values: np.ndarray | None = None
+) -> list[tuple[np.ndarray, bool]]:
     """The curves ``fun(u1, u2) = 0`` on the surface's domain as ``(points, closed)``:
     marching squares on a ``grid x grid`` parameter grid (periodic parameters
     wrap), each crossing refined on its grid edge to machine precision, the
-    crossings joined into polylines in the parameter plane."""
+    crossings joined into polylines in the parameter plane.  ``values``, if
+    given, is ``fun`` on the nodes of :func:`grid_parameters` (computed by
+    the caller from what it keeps between calls)."""
     d = surface.domain
     n1, n2 = grid, grid
     a1, a2 = _grid_axis(surface, 0, n1), _grid_axis(surface, 1, n2)
-    U1, U2 = np.meshgrid(a1, a2, indexing="ij")
-    F = fun(U1, U2)
+    F = fun(*np.meshgrid(a1, a2, indexing="ij")) if values is None else values
     F = np.where(np.isfinite(F), F, 0.0)
     pos = F >= 0
     per1, per2 = d.periodic

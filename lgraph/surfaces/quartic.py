@@ -31,7 +31,6 @@ from .parametric import _TWO_PI, _positive, _stack, _uv
 __all__ = ["Torus", "DupinCyclide"]
 
 
-
 def _quartic_implicit(points: Any, k: float, lin: np.ndarray) -> np.ndarray:
     """``(|x|^2 + k)^2 - 4 sum_i (w_i . x + w0_i)^2`` with rows ``(w_i, w0_i)``
     of ``lin``: the implicit form of the torus and of the Dupin cyclide."""
@@ -259,5 +258,3 @@ class DupinCyclide(_QuarticSurface):
         """Both families of circles: the parameter lines (exact)."""
         d = self.domain
         return parameter_line_batches(self, d.lines(0, n1), d.lines(1, n2))
-
-
