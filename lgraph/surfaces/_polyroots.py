@@ -20,12 +20,13 @@ def real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
     highest power first, leading coefficient non-zero), NaN where a root is
     complex.
 
-    Roots are the eigenvalues of the companion matrices, all rows at once.  A
-    root counts as real when its imaginary part is below ``1e-7`` of ``size +
-    |root|`` (a double root splits into a pair ~1e-8 apart); only real roots
-    are then polished by Newton steps (small ones: a complex pair's real part
-    must not wander off into a false root).  ``size`` is a scalar or one
-    value per row.
+    Roots of cubics and quartics are the eigenvalues of the companion
+    matrices, all rows at once; of lines and quadratics, the closed forms
+    (the quadratic's without cancellation).  A root counts as real when its
+    imaginary part is below ``1e-7`` of ``size + |root|`` (a double root
+    splits into a pair ~1e-8 apart); only real roots are then polished by
+    Newton steps (small ones: a complex pair's real part must not wander off
+    into a false root).  ``size`` is a scalar or one value per row.
 
     >>> np.sort(real_roots(np.array([[1.0, -3.0, 2.0]]), 1.0)).round(12).tolist()
     [[1.0, 2.0]]
@@ -34,12 +35,15 @@ def real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
     n, deg = len(coef), coef.shape[1] - 1
     size = np.broadcast_to(np.asarray(size, float), (n,))[:, None]
     monic = coef[:, 1:] / coef[:, :1]
-    comp = np.zeros((n, deg, deg))
-    comp[:, 0, :] = -monic
-    comp[:, np.arange(1, deg), np.arange(deg - 1)] = 1.0
-    roots = np.linalg.eigvals(comp)
-    s = roots.real.copy()
-    real = np.abs(roots.imag) <= 1e-7 * (size + np.abs(s))
+    if deg <= 2:
+        s, imag = _low_degree(monic)
+    else:
+        comp = np.zeros((n, deg, deg))
+        comp[:, 0, :] = -monic
+        comp[:, np.arange(1, deg), np.arange(deg - 1)] = 1.0
+        roots = np.linalg.eigvals(comp)
+        s, imag = roots.real.copy(), roots.imag
+    real = np.abs(imag) <= 1e-7 * (size + np.abs(s))
     for _ in range(3):
         f = np.zeros_like(s)
         df = np.zeros_like(s)
@@ -50,6 +54,23 @@ def real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
             step = np.where(real & (df != 0), f / df, 0.0)
         s = s - np.where(np.abs(step) < 1e-3 * (size + np.abs(s)), step, 0.0)
     return np.where(real, s, np.nan)
+
+
+def _low_degree(monic: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Real parts and imaginary parts ``(n, deg)`` of the roots of ``s + q`` or
+    ``s^2 + p s + q`` (rows of ``monic``: ``[q]`` or ``[p, q]``)."""
+    if monic.shape[1] == 1:
+        return -monic.copy(), np.zeros_like(monic)
+    p, q = monic[:, 0], monic[:, 1]
+    disc = p * p - 4 * q
+    root = np.sqrt(np.abs(disc))
+    big = -0.5 * (p + np.copysign(root, p))  # the root of larger magnitude, no cancellation
+    with np.errstate(invalid="ignore", divide="ignore"):
+        small = np.where(big != 0, q / np.where(big != 0, big, 1.0), 0.0)
+    real = disc >= 0
+    re = np.where(real[:, None], np.stack([big, small], axis=1), -0.5 * p[:, None])
+    im = np.where(real, 0.0, 0.5 * root)[:, None] * np.array([1.0, -1.0])
+    return re, im
 
 
 def all_real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
