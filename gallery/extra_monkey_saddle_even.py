@@ -5,7 +5,7 @@ from __future__ import annotations
 import lgraph as lg
 
 CAPTION = (
-    "The monkey saddle of the previous figure with LinesOfCurvature(14, 14, spacing=\"even\"): "
+    'The monkey saddle of the previous figure with LinesOfCurvature(14, 14, spacing="even"): '
     "lines are seeded to lie evenly spaced and cut where they come closer than half the "
     "spacing to another line of their family (evenly spaced streamlines), so they never "
     "bunch up near the flat umbilic but no longer run from edge to edge."

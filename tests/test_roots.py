@@ -144,4 +144,3 @@ def test_zero_set_drops_a_zero_at_a_single_grid_node():
     (pts, closed), *rest = zero_set(s, circle)
     assert closed and not rest
     assert np.abs(np.hypot(pts[:, 0] - 0.5, pts[:, 1] - 0.5) - 0.3).max() < 1e-14
-

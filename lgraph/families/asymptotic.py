@@ -62,5 +62,3 @@ class AsymptoticLines(Family):
 
 
 register_family("asymptotic_lines", AsymptoticLines)
-
-

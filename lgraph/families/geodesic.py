@@ -152,5 +152,3 @@ class Geodesic(Family):
             return surface.domain.wrap(out)
 
         return [CurveBatch.from_uv(surface, "geodesic", [t0], [t1], uv)]
-
-

@@ -234,5 +234,3 @@ class IntersectionCurve(Family):
                 surface=surface,
             )
         ]
-
-
