@@ -395,7 +395,7 @@ def animate(
         More keywords for :meth:`Scene.render` (``tolerance``, ``hidden_style``).
         ``{"tolerance": "pixel"}`` samples raster frames only as finely as
         their pixels show: every chord within
-        :data:`~lgraph.frame_geometry.PIXEL_TOLERANCE` pixels of its curve
+        ``PIXEL_TOLERANCE`` (0.25, ``lgraph/_tolerance.py``) pixels of its curve
         (:func:`~lgraph.frame_geometry.pixel_tolerance`; about 4.6e-4 of the diagonal
         for 480 px frames, 4.6 times the render's default, 1e-4).  Vector
         frames (PDF, SVG) keep the render's default.

@@ -87,9 +87,9 @@ def frame_window(
 
 def pixel_tolerance(page: Page) -> float:
     """The render tolerance (a fraction of the figure's diagonal) that keeps
-    every chord within :data:`PIXEL_TOLERANCE` pixels of its curve in a
-    raster frame of ``page`` (width and height in pixels), whose inner part
-    shows the common frame window.
+    every chord within ``PIXEL_TOLERANCE`` (0.25, ``lgraph/_tolerance.py``)
+    pixels of its curve in a raster frame of ``page`` (width and height in
+    pixels), whose inner part shows the common frame window.
 
     The figure lies inside the window, so its diagonal is at most the
     window's, which spans the page inside its margins.
