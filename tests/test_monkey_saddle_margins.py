@@ -146,3 +146,48 @@ def test_drawing_equals_the_bisected_one(hidden_lines: bool) -> None:
             assert (sa.family, sa.visible) == (sb.family, sb.visible)
             assert sa.xyz.shape == sb.xyz.shape
             np.testing.assert_allclose(sa.xyz, sb.xyz, rtol=0, atol=1e-11 * size)
+
+
+# -- the numeric contour's Newton projection with the analytic gradient -------
+
+
+@pytest.mark.parametrize(
+    "surface", [SURFACE, lg.Helicoid(), lg.Enneper(), lg.Torus(2, 0.5)], ids=type
+)
+def test_contour_projection_with_analytic_gradient_equals_the_central_difference_one(
+    surface,
+) -> None:
+    from lgraph.surfaces import _numeric_contour as nc
+
+    rng = np.random.default_rng(8)
+    d = surface.domain
+    span = np.array([d.span(0), d.span(1)])
+    for projector in (
+        lg.ParallelProjector(direction=rng.normal(size=3)),
+        lg.CentralProjector(eye=5 * rng.normal(size=3)),
+    ):
+        assert nc._analytic_second_derivatives(surface)
+        batch = surface.contour(projector)[0]
+        idx = np.repeat(np.arange(len(batch.t0)), 100)
+        t = np.concatenate([np.linspace(a, b, 100) for a, b in zip(batch.t0, batch.t1)])
+        uv = batch.evaluate(idx, t)[1] + rng.normal(size=(len(t), 2)) * 1e-4 * span
+        f, g1, g2 = nc.view_cosine_gradient(surface, projector, uv[:, 0], uv[:, 1])
+        np.testing.assert_allclose(f, nc.view_cosine(surface, projector, uv[:, 0], uv[:, 1]),
+                                   rtol=0, atol=1e-15)  # fmt: skip
+        h = 1e-5 * span
+        for g, e in ((g1, np.array([h[0], 0.0])), (g2, np.array([0.0, h[1]]))):
+            # fourth-order central differences: error near 1e-10 of the gradient
+            fd = sum(
+                w * nc.view_cosine(surface, projector, *(uv + k * e).T)
+                for k, w in ((-2, 1 / 12), (-1, -2 / 3), (1, 2 / 3), (2, -1 / 12))
+            ) / np.linalg.norm(e)
+            np.testing.assert_allclose(g, fd, rtol=0, atol=1e-8 * np.abs(g).max())
+        exact = nc.project_to_contour(surface, projector, uv)
+
+        def fun(u1, u2, projector=projector):
+            return nc.view_cosine(surface, projector, u1, u2)
+
+        numeric = nc.project_to_zero(surface, fun, uv, 4, 1e-14)
+        np.testing.assert_allclose(exact, numeric, rtol=0, atol=1e-13 * span.max())
+        res = nc.view_cosine(surface, projector, *exact.T)
+        assert np.abs(res).max() < 1e-13
