@@ -191,3 +191,13 @@ def test_contour_projection_with_analytic_gradient_equals_the_central_difference
         np.testing.assert_allclose(exact, numeric, rtol=0, atol=1e-13 * span.max())
         res = nc.view_cosine(surface, projector, *exact.T)
         assert np.abs(res).max() < 1e-13
+
+
+def test_surfaces_with_numeric_second_derivatives_keep_central_differences() -> None:
+    from lgraph.surfaces import _numeric_contour as nc
+
+    def saddle(u1, u2):
+        return np.stack(np.broadcast_arrays(u1, u2, u1 * u2), axis=-1)
+
+    assert not nc._analytic_second_derivatives(lg.ParametricSurface(saddle, (0, 1), (0, 1)))
+    assert nc._analytic_second_derivatives(SURFACE)

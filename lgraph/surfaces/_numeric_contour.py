@@ -67,9 +67,10 @@ def _cosine(n: np.ndarray, p: np.ndarray | None, projector: Projector) -> np.nda
 
 
 def _analytic_second_derivatives(surface: Surface) -> bool:
-    from ._base import Surface
-
-    return type(surface).second_derivatives is not Surface.second_derivatives
+    """Whether the surface's class overrides the numeric default of
+    ``second_derivatives`` (defined by the base class: the last of the MRO)."""
+    owners = [c for c in type(surface).__mro__ if "second_derivatives" in vars(c)]
+    return len(owners) > 1
 
 
 def view_cosine_gradient(
