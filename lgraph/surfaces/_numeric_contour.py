@@ -29,7 +29,14 @@ if TYPE_CHECKING:
     from ..projectors import Projector
     from ._base import Surface
 
-__all__ = ["contour", "view_cosine", "project_to_contour", "project_to_zero", "zero_set_batch"]
+__all__ = [
+    "contour",
+    "project_to_contour",
+    "project_to_zero",
+    "view_cosine",
+    "view_cosine_gradient",
+    "zero_set_batch",
+]
 
 
 def _is_central(projector: Any) -> bool:
@@ -59,23 +66,75 @@ def _cosine(n: np.ndarray, p: np.ndarray | None, projector: Projector) -> np.nda
         )
 
 
+def _analytic_second_derivatives(surface: Surface) -> bool:
+    """Whether the surface's class overrides the numeric default of
+    ``second_derivatives`` (defined by the base class: the last of the MRO)."""
+    owners = [c for c in type(surface).__mro__ if "second_derivatives" in vars(c)]
+    return len(owners) > 1
+
+
+def view_cosine_gradient(
+    surface: Surface, projector: Projector, u1: Any, u2: Any
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``f = N . w / |w|`` and its partial derivatives ``f_1, f_2`` from the
+    second derivatives: with ``n = x_1 x x_2``, ``n_i = x_1i x x_2 + x_1 x x_2i``
+    and ``w_i = 0`` (parallel view) or ``-x_i`` (central view),
+    ``f_i = (n_i . w + n . w_i) / (|n| |w|) - f (n . n_i / |n|^2 + w . w_i / |w|^2)``."""
+    u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+    x1, x2 = surface.derivatives(u1, u2)
+    x11, x12, x22 = surface.second_derivatives(u1, u2)
+    n = _cross(x1, x2)
+    n1 = _cross(x11, x2) + _cross(x1, x12)
+    n2 = _cross(x12, x2) + _cross(x1, x22)
+    central = _is_central(projector)
+    w = projector.eye - surface.point(u1, u2) if central else projector.frame[2]
+
+    def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return np.einsum("...i,...i", a, np.broadcast_to(b, a.shape))
+
+    nn = dot(n, n)
+    ww = dot(w, w) if central else float(w @ w)
+    nw = dot(n, w)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        norm = np.sqrt(nn) * np.sqrt(ww)
+        f = nw / norm
+        grads = []
+        for ni, xi in ((n1, x1), (n2, x2)):
+            a = dot(ni, w) - (dot(n, xi) if central else 0.0)
+            b = dot(n, ni) / nn - (dot(w, xi) / ww if central else 0.0)
+            grads.append(a / norm - f * b)
+    return f, grads[0], grads[1]
+
+
 def project_to_contour(
     surface: Surface, projector: Projector, uv: np.ndarray, steps: int = 4
 ) -> np.ndarray:
-    """Newton projection of parameters ``uv (n, 2)`` onto the contour ``f = 0``."""
+    """Newton projection of parameters ``uv (n, 2)`` onto the contour ``f = 0``
+    (with the analytic gradient :func:`view_cosine_gradient` where the surface
+    has analytic second derivatives)."""
 
     def fun(u1: Any, u2: Any) -> np.ndarray:
         return view_cosine(surface, projector, u1, u2)
 
-    return project_to_zero(surface, fun, uv, steps, 1e-14)
+    def fun_grad(u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return view_cosine_gradient(surface, projector, u1, u2)
+
+    analytic = _analytic_second_derivatives(surface)
+    return project_to_zero(surface, fun, uv, steps, 1e-14, fun_grad if analytic else None)
 
 
 def project_to_zero(
-    surface: Surface, fun: Any, uv: np.ndarray, steps: int = 4, ftol: float = 1e-14
+    surface: Surface,
+    fun: Any,
+    uv: np.ndarray,
+    steps: int = 4,
+    ftol: float = 1e-14,
+    fun_grad: Any = None,
 ) -> np.ndarray:
     """Newton projection of parameters ``uv (n, 2)`` onto ``fun(u1, u2) = 0``
     (minimal steps in parameters scaled by the spans, central-difference
-    gradients); points with ``|fun| <= ftol`` stop early."""
+    gradients, or ``fun_grad(u1, u2) -> (f, f_1, f_2)`` when given); points
+    with ``|fun| <= ftol`` stop early."""
     d = surface.domain
     scale = np.array([d.span(0), d.span(1)])
     uv = np.array(uv, dtype=float, copy=True)
@@ -85,9 +144,12 @@ def project_to_zero(
         if not len(active):
             break
         p = uv[active]
-        f = fun(p[:, 0], p[:, 1])
-        g1 = (fun(p[:, 0] + h[0], p[:, 1]) - fun(p[:, 0] - h[0], p[:, 1])) / (2 * h[0])
-        g2 = (fun(p[:, 0], p[:, 1] + h[1]) - fun(p[:, 0], p[:, 1] - h[1])) / (2 * h[1])
+        if fun_grad is not None:
+            f, g1, g2 = fun_grad(p[:, 0], p[:, 1])
+        else:
+            f = fun(p[:, 0], p[:, 1])
+            g1 = (fun(p[:, 0] + h[0], p[:, 1]) - fun(p[:, 0] - h[0], p[:, 1])) / (2 * h[0])
+            g2 = (fun(p[:, 0], p[:, 1] + h[1]) - fun(p[:, 0], p[:, 1] - h[1])) / (2 * h[1])
         # minimal step in coordinates scaled by the spans
         g1s, g2s = g1 * scale[0], g2 * scale[1]
         gg = g1s * g1s + g2s * g2s

@@ -14,6 +14,7 @@ from .._tolerance import SELF_HIT_RTOL
 from ..families import parameter_line_batches
 from ._base import CONTOUR, ON, Domain, Surface
 from ._polyroots import all_real_roots
+from ._saddle_margins import RIM_SLACK, margins, ray_cubic
 from .parametric import _TWO_PI, _positive, _stack, _uv
 
 __all__ = ["MonkeySaddle", "Helicoid", "Catenoid", "Enneper"]
@@ -85,19 +86,11 @@ class MonkeySaddle(Surface):
         n = len(o)
         smax = np.broadcast_to(np.asarray(smax, dtype=float), (n,))
         own = np.zeros(n, np.int8) if own is None else np.asarray(own)
-        ox, oy, oz = o.T
-        vx, vy, vz = v.T
-        c = self.c
-        coef = np.stack(
-            [-c * (vx**3 - 3 * vx * vy * vy),
-             -c * (3 * ox * vx * vx - 3 * (ox * vy * vy + 2 * oy * vx * vy)),
-             vz - c * (3 * ox * ox * vx - 3 * (2 * ox * oy * vy + vx * oy * oy)),
-             oz - c * (ox**3 - 3 * ox * oy * oy)], axis=1,
-        )  # fmt: skip
+        coef = ray_cubic(self.c, o, v)
         speed = np.sqrt(np.einsum("ij,ij->i", v, v))
         hit = np.zeros(n, dtype=bool)
         size = self.size
-        e = self.extent * (1 + 1e-12)
+        e = self.extent * (1 + RIM_SLACK)
         for degree, rows in (
             (3, np.flatnonzero((own != ON) & (own != CONTOUR))),
             (2, np.flatnonzero(own == ON)),
@@ -114,6 +107,19 @@ class MonkeySaddle(Surface):
                 ok &= (np.abs(x) <= e) & (np.abs(y) <= e)
             hit[rows] = ok.any(axis=1)
         return hit
+
+    def visibility_margins(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray,
+        uv: np.ndarray | None = None,
+        which: int | None = None,
+    ) -> np.ndarray | None:
+        """Its contour, its four rims and grazing rays as transition functions
+        (:mod:`lgraph.surfaces._saddle_margins`); ``uv`` is not needed."""
+        return margins(self, origins, directions, smax, own, which)
 
 
 @attrs.frozen
