@@ -36,7 +36,8 @@ import numpy as np
 
 from .._own import CONTOUR, OFF, ON
 from .._tolerance import SELF_HIT_RTOL
-from ._revolution_local import near_own_hits
+from ._revolution_fast import monotone_tables, own_sign, scan
+from ._revolution_local import own_second_root, point_parameters
 
 if TYPE_CHECKING:
     from .revolution import SurfaceOfRevolution
@@ -176,7 +177,14 @@ def hits(
     directions: np.ndarray,
     smax: np.ndarray,
     own: np.ndarray | None = None,
+    *,
+    general: bool = False,
 ) -> np.ndarray:
+    """Which rays ``origins + s directions``, ``0 < s < smax``, meet the surface
+    (``own``: where the origins lie, see :mod:`lgraph._own`).  Rays of a
+    profile with monotone heights go through :func:`~lgraph.surfaces.
+    _revolution_fast.scan`, the others (and all, with ``general=True``: the
+    reference for tests) through the scan of ring-bounded blocks."""
     o = np.asarray(origins, dtype=float).reshape(-1, 3)
     v = np.asarray(directions, dtype=float).reshape(-1, 3)
     n = len(o)
@@ -194,11 +202,44 @@ def hits(
     rtol = np.where((own == ON) & flat, FLAT_RTOL, rtol)
     eps = rtol * size
     on = np.flatnonzero(own == ON)
+    nv, t_own = np.full(n, np.nan), np.full(n, np.nan)
     if len(on):  # second roots near the point's own (at its contour): local analysis
         cut = CONTOUR_SELF_RTOL * size
-        out[on], decided = near_own_hits(surface, o[on], vh[on], cut)
+        out[on], decided, nv[on], t_own[on] = own_second_root(surface, o[on], vh[on], cut)
         eps[on[decided]] = np.maximum(eps[on[decided]], cut)
+    rest = np.flatnonzero(~out)
     blk = _blocks(surface)
+    tab = None if general else monotone_tables(surface, blk["cellpad"])
+    if tab is not None:  # monotone heights: one run of cells per steep ray
+        fast = rest[~flat[rest]]
+        con = fast[own[fast] == CONTOUR]
+        if len(con):
+            t_own[con] = point_parameters(surface, o[con])
+        ray = (c[fast], k2[fast], d2[fast], hstar[fast], oa[fast], eps[fast], lam_max[fast])
+        s0 = own_sign(surface, tab, ray, own[fast] == CONTOUR, t_own[fast], nv[fast])
+        sub = np.zeros(len(fast), bool)
+        done = scan(surface, tab, ray, own[fast] != OFF, s0, GRAZE_FTOL * size * size, sub)
+        out[fast] = sub
+        keep = np.ones(n, bool)
+        keep[fast[done]] = False
+        rest = rest[keep[rest]]
+    if not len(rest):
+        return out
+    if len(rest) < n:  # the general test on the rest
+        sub = out[rest]
+        _general(surface, blk, rest, oa, c, k2, d2, hstar, sstar, eps, lam_max, sub)
+        out[rest] = sub
+    else:
+        _general(surface, blk, slice(None), oa, c, k2, d2, hstar, sstar, eps, lam_max, out)
+    return out
+
+
+def _general(surface, blk, sel, oa, c, k2, d2, hstar, sstar, eps, lam_max, out) -> None:  # noqa: ANN001
+    """The scan on ring-bounded blocks of the grid for the rays ``sel``."""
+    oa, c, k2, d2, hstar, sstar, eps, lam_max = (
+        x[sel] for x in (oa, c, k2, d2, hstar, sstar, eps, lam_max)
+    )
+    n = len(c)
     nb = len(blk["j0"])
     step = max(1, CHUNK // nb)
     pairs_r, pairs_b = [], []
@@ -209,10 +250,9 @@ def hits(
         pairs_b.append(b)
     pr, pb = np.concatenate(pairs_r), np.concatenate(pairs_b)
     if not len(pr):
-        return out
+        return
     ray = (c, k2, d2, hstar, sstar, eps, lam_max)
     _narrow(surface, blk, pr, pb, ray, out)
-    return out
 
 
 def _broad(blk: dict, oa, c, k2, d2, ss, eps, lam_max) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
