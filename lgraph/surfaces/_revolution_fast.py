@@ -36,7 +36,7 @@ import numpy as np
 if TYPE_CHECKING:
     from .revolution import SurfaceOfRevolution
 
-__all__ = ["monotone_tables", "scan"]
+__all__ = ["cusp_function", "far_margin", "monotone_tables", "newton", "own_sign", "scan"]
 
 
 def monotone_tables(surface: SurfaceOfRevolution, cellpad: np.ndarray) -> dict | None:
@@ -329,8 +329,6 @@ def _own_cut_cell(surface, tab, ray, p, io, ze, q, fq, touch_q, ftol, out) -> No
     ``ze``) up to the far node ``q`` is scanned like a cell of the general
     test (a sign change, or an extremum turning back across zero; the cut
     end is no node and counts no touching)."""
-    from ._revolution_hits import _newton
-
     t, z = tab["t"], tab["z"]
     span = abs(t[-1] - t[0])
     ta, tb = t[io], t[io + 1]
@@ -342,7 +340,7 @@ def _own_cut_cell(surface, tab, ray, p, io, ze, q, fq, touch_q, ftol, out) -> No
     def f_df(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return surface.rz(x)[1] - ze[sel], surface.drz(x)[1]
 
-    te = _newton(f_df, a, b, fa, fb, 4e-16 * span, 0.0)
+    te = newton(f_df, a, b, fa, fb, 4e-16 * span, 0.0)
     fe, ge = _ray_function(surface, ray, p, te)
     _, gq = _ray_function(surface, ray, p, t[q])
     out[p[(fe > 0) != (fq > 0)]] = True
@@ -360,8 +358,6 @@ def _own_cut_cell(surface, tab, ray, p, io, ze, q, fq, touch_q, ftol, out) -> No
 def _extrema(surface, ray, p, a, b) -> np.ndarray:  # noqa: ANN001
     """``F`` of rays ``p`` at the extremum in ``[a, b]`` (where ``F'``
     changes sign)."""
-    from ._revolution_hits import _newton
-
     c, k2, _, hs = ray[:4]
     span = float(np.ptp(surface._grid["t"]))
 
@@ -379,5 +375,33 @@ def _extrema(surface, ray, p, a, b) -> np.ndarray:  # noqa: ANN001
     ga = _ray_function(surface, ray, p, a)[1]
     gb = _ray_function(surface, ray, p, b)[1]
     # F is flat at its extremum: t to 1e-9 gives F there to rounding level
-    te = _newton(d_dd, a, b, ga, gb, 1e-9 * span, 0.0)
+    te = newton(d_dd, a, b, ga, gb, 1e-9 * span, 0.0)
     return _ray_function(surface, ray, p, te)[0]
+
+
+def newton(f_df, a, b, fa, fb, xtol, ftol):  # noqa: ANN001, ANN202
+    """Roots in brackets ``[a, b]`` (``fa``, ``fb`` of opposite signs): Newton steps
+    from the middle, bisection when a step leaves the bracket; all at once.
+    Stops at ``|f| <= ftol`` (rounding level) or a step below ``xtol``."""
+    a, b, fa = a.copy(), b.copy(), fa.copy()
+    x = 0.5 * (a + b)
+    idx = np.arange(len(a))
+    for _ in range(80):
+        xi = x[idx]
+        f, df = f_df(xi, idx)
+        left = (f > 0) == (fa[idx] > 0)  # root in [x, b]
+        ai = np.where(left, xi, a[idx])
+        bi = np.where(left, b[idx], xi)
+        a[idx], b[idx] = ai, bi
+        fa[idx] = np.where(left, f, fa[idx])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            nx = xi - f / df
+        newton = (nx >= ai) & (nx <= bi)
+        nx = np.where(newton, nx, 0.5 * (ai + bi))
+        x[idx] = nx
+        converged = newton & (np.abs(nx - xi) <= xtol)
+        keep = (np.abs(f) > ftol) & ~converged & (bi - ai > xtol)
+        idx = idx[keep]
+        if not len(idx):
+            break
+    return x

@@ -36,7 +36,7 @@ import numpy as np
 
 from .._own import CONTOUR, OFF, ON
 from .._tolerance import SELF_HIT_RTOL
-from ._revolution_fast import monotone_tables, own_sign, scan
+from ._revolution_fast import monotone_tables, newton, own_sign, scan
 from ._revolution_local import own_second_root, point_parameters
 
 if TYPE_CHECKING:
@@ -152,7 +152,7 @@ def grazing(
         )
 
     # F is flat at its extremum: t to 1e-9 gives F there to rounding level
-    te = _newton(d_dd, t[cj], t[cj + 1], dF[ri, cj], dF[ri, cj + 1], 1e-9 * span, 0.0)
+    te = newton(d_dd, t[cj], t[cj + 1], dF[ri, cj], dF[ri, cj + 1], 1e-9 * span, 0.0)
     rr, zz = surface.rz(te)
     h = zz - hs[ri]
     fe = (c * c)[ri] * (rr * rr - d2[ri]) - k2[ri] * h * h
@@ -277,34 +277,6 @@ def _broad(blk: dict, oa, c, k2, d2, ss, eps, lam_max) -> tuple[np.ndarray, np.n
     return np.nonzero(ok)
 
 
-def _newton(f_df, a, b, fa, fb, xtol, ftol):  # noqa: ANN001, ANN202
-    """Roots in brackets ``[a, b]`` (``fa``, ``fb`` of opposite signs): Newton steps
-    from the middle, bisection when a step leaves the bracket; all at once.
-    Stops at ``|f| <= ftol`` (rounding level) or a step below ``xtol``."""
-    a, b, fa = a.copy(), b.copy(), fa.copy()
-    x = 0.5 * (a + b)
-    idx = np.arange(len(a))
-    for _ in range(80):
-        xi = x[idx]
-        f, df = f_df(xi, idx)
-        left = (f > 0) == (fa[idx] > 0)  # root in [x, b]
-        ai = np.where(left, xi, a[idx])
-        bi = np.where(left, b[idx], xi)
-        a[idx], b[idx] = ai, bi
-        fa[idx] = np.where(left, f, fa[idx])
-        with np.errstate(invalid="ignore", divide="ignore"):
-            nx = xi - f / df
-        newton = (nx >= ai) & (nx <= bi)
-        nx = np.where(newton, nx, 0.5 * (ai + bi))
-        x[idx] = nx
-        converged = newton & (np.abs(nx - xi) <= xtol)
-        keep = (np.abs(f) > ftol) & ~converged & (bi - ai > xtol)
-        idx = idx[keep]
-        if not len(idx):
-            break
-    return x
-
-
 def _trimmed(surface: SurfaceOfRevolution, ray, pr, p, a, b, za, zb, dza, span):  # noqa: ANN001, ANN202
     """Cells ``[a, b]`` (pairs ``p``, ``z`` monotone) cut to ``eps < lam < lam_max``,
     ``lam = (z - o_a) / c``: the cell tuple of :func:`_narrow` (all inside the range)."""
@@ -328,7 +300,7 @@ def _trimmed(surface: SurfaceOfRevolution, ray, pr, p, a, b, za, zb, dza, span):
             def f_df(x: np.ndarray, sel: np.ndarray, zt: np.ndarray = zt, k: np.ndarray = k) -> Any:
                 return surface.rz(x)[1] - zt[sel], surface.drz(x)[1]
 
-            tc = _newton(f_df, lo_t[k], hi_t[k], za[k] - zt, zb[k] - zt, 4e-16 * span, 0.0)
+            tc = newton(f_df, lo_t[k], hi_t[k], za[k] - zt, zb[k] - zt, 4e-16 * span, 0.0)
             # the end outside the range moves to the cut
             lo_t[k] = np.where(ina[k], lo_t[k], tc)
             hi_t[k] = np.where(ina[k], tc, hi_t[k])
@@ -448,7 +420,7 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
             )
 
         # F is flat at its extremum: t to 1e-9 gives F there to rounding level
-        te = _newton(d_dd, ta[ei], tb[ei], ga0[ei], gb0[ei], 1e-9 * span, 0.0)
+        te = newton(d_dd, ta[ei], tb[ei], ga0[ei], gb0[ei], 1e-9 * span, 0.0)
         fe = f_at(te, ep)
         flip = (fe > 0) != (fa0[ei] > 0)
         touch = np.abs(fe) <= ftol
@@ -476,7 +448,7 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
             return cc * (rr * rr - d2[p]) - k2[p] * h * h, 2 * (cc * rr * dr - k2[p] * h * dzz)
 
         root_p.append(bp)
-        root_t.append(_newton(f_df, a_, b_, fa, fb, 4e-16 * span, NEWTON_FTOL * size * size))
+        root_t.append(newton(f_df, a_, b_, fa, fb, 4e-16 * span, NEWTON_FTOL * size * size))
     rp, tt = np.concatenate(root_p), np.concatenate(root_t)
     if not len(rp):
         return
