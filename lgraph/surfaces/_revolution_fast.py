@@ -117,11 +117,11 @@ def _runs(
     cmin, cmax = np.maximum(lo_in - 1, 0), np.minimum(hi_in, m - 1)
     cmin = np.where(mine & up, np.maximum(cmin, io + 1), cmin)
     cmax = np.where(mine & ~up, np.minimum(cmax, io - 1), cmax)
-    # ... and the window of heights where F >= -ftol is possible, tightened twice
+    # ... and the window of heights where F >= -ftol is possible, tightened once
     r2 = np.full(n, tab["rmax"] ** 2)
     c2 = c * c
     first, last = cmin, cmax
-    for _ in range(3 if window is None or window.any() else 0):
+    for _ in range(2 if window is None or window.any() else 0):
         room = c2 * (r2 - d2) + ftol
         with np.errstate(divide="ignore", invalid="ignore"):
             w = np.where(k2 > 0, np.sqrt(np.maximum(room, 0.0) / k2), np.inf)
@@ -148,32 +148,60 @@ def _runs(
     return {
         "rays": rays, "ray_of": ray_of, "node": node, "lo_in": lo_in, "hi_in": hi_in,
         "io": io, "q": q, "own_cut": own_cut, "ze": ze, "undecided": undecided,
+        "start": start, "n_lo": n_lo[rays], "n_hi": n_hi[rays],
     }  # fmt: skip
 
 
-def _values(tab: dict, ray: tuple, run: dict, ftol: float) -> tuple:
-    """``F`` at the scanned nodes, its derivative along the nodes (up to a
-    positive factor), and the masks of the cells: consecutive nodes of one
-    ray (``same``), holding a limit of the range (``cut``), where ``F``
-    turns back toward zero (``turning``), and of nodes at rounding level
-    inside the range (``touch``; not at a rim: there only a sign change
-    counts) or anywhere (``small``)."""
+def _position(run: dict, node: np.ndarray) -> np.ndarray:
+    """Index into the flattened nodes of node ``node[i]`` of ray ``rays[i]``
+    (-1 where that ray does not scan it)."""
+    ok = (node >= run["n_lo"]) & (node <= run["n_hi"])
+    return np.where(ok, run["start"] + node - run["n_lo"], -1)
+
+
+def _values(tab: dict, ray: tuple, run: dict, ftol: float) -> dict:
+    """``F`` at the scanned nodes (``f``), its derivative along the nodes up
+    to a positive factor (``df``), which nodes lie inside the range
+    (``inside``; the others end a cell holding a limit) and off the rims
+    (``inner``), which pairs of consecutive entries are cells of one ray
+    (``same``), hold a limit of the range (``cut``) or a sign change of
+    ``F`` (``change``), and where ``F`` turns back toward zero (``turning``,
+    indices of cells) or is at rounding level (``small``, indices of
+    nodes)."""
     c, k2, d2, hs = ray[:4]
     ray_of, node = run["ray_of"], run["node"]
-    m = len(tab["z"]) - 1
+    rays, start, n_lo, n_hi = run["rays"], run["start"], run["n_lo"], run["n_hi"]
+    m, size = len(tab["z"]) - 1, len(node)
     C2, K2 = (c * c)[ray_of], k2[ray_of]
     h = tab["z"][node] - hs[ray_of]
     f = C2 * (tab["rho2"][node] - d2[ray_of]) - K2 * h * h
     df = C2 * tab["rdr"][node] - K2 * h * tab["dz"][node]
-    small = np.abs(f) <= ftol
-    inside = (node >= run["lo_in"][ray_of]) & (node <= run["hi_in"][ray_of])
-    touch = small & inside & (node > 0) & (node < m)
-    same = ray_of[1:] == ray_of[:-1]
-    r1, cell = ray_of[1:], node[:-1]
-    cut = same & ((cell == run["lo_in"][r1] - 1) | (cell == run["hi_in"][r1]))
-    fa, ga, gb = f[:-1], df[:-1], df[1:]
-    turning = same & (((fa > 0) & (ga < 0) & (gb > 0)) | ((fa < 0) & (ga > 0) & (gb < 0)))
-    return f, df, small, inside, touch, same, cut, turning
+    small = np.flatnonzero(np.abs(f) <= ftol)
+    # the few special entries, from the runs' ends
+    lo_in, hi_in = run["lo_in"][rays], run["hi_in"][rays]
+    inside = np.ones(size, bool)
+    inner = np.ones(size, bool)
+    ends = start + n_hi - n_lo
+    inside[start[n_lo < lo_in]] = False
+    inside[ends[n_hi > hi_in]] = False
+    inner[start[n_lo == 0]] = False
+    inner[ends[n_hi == m]] = False
+    same = np.ones(max(size - 1, 0), bool)
+    same[ends[:-1]] = False
+    cut = np.zeros(len(same), bool)
+    for cell in (lo_in - 1, hi_in):
+        at = _position(run, cell)
+        cut[at[(at >= 0) & (cell < n_hi)]] = True
+    pos = f > 0
+    change = same & (pos[1:] != pos[:-1])
+    up, down = df > 0, df < 0
+    turning = np.flatnonzero(same & ((up[:-1] & down[1:]) | (down[:-1] & up[1:])))
+    fa = f[turning]
+    turning = turning[((fa > 0) & down[turning]) | ((fa < 0) & up[turning])]
+    return {
+        "f": f, "df": df, "pos": pos, "small": small, "inside": inside, "inner": inner,
+        "same": same, "cut": cut, "change": change, "turning": turning,
+    }  # fmt: skip
 
 
 def scan(
@@ -194,24 +222,34 @@ def scan(
     undecided = run["undecided"]
     if not len(run["ray_of"]):
         return ~undecided
-    ray_of, node, q = run["ray_of"], run["node"], run["q"]
-    f, _, small, _, touch, same, cut, turning = _values(tab, ray, run, ftol)
+    ray_of, node = run["ray_of"], run["node"]
+    val = _values(tab, ray, run, ftol)
+    f, pos, small, cut, change = val["f"], val["pos"], val["small"], val["cut"], val["change"]
+    # a node at rounding level inside the range, off the rims (there only a sign
+    # change counts): a touching root
+    touch = np.zeros(len(f), bool)
+    touch[small[val["inside"][small] & val["inner"][small]]] = True
     out[ray_of[touch]] = True
-    pos = f > 0
-    r1 = ray_of[1:]
-    change = same & (pos[1:] != pos[:-1])
     # a cell holding a limit must hold no root at all, else the general test decides
-    undecided[r1[cut & (change | turning | small[:-1] | small[1:])]] = True
-    out[r1[change & ~cut]] = True
+    tiny = np.zeros(len(f), bool)
+    tiny[small] = True
+    turning = np.zeros(len(cut), bool)
+    turning[val["turning"]] = True
+    ci = np.flatnonzero(cut)
+    odd = change[ci] | turning[ci] | tiny[ci] | tiny[ci + 1]
+    undecided[ray_of[ci[odd]]] = True
+    out[ray_of[np.flatnonzero(change & ~cut)]] = True
     # the own cell: a second root past the point iff F at its far node has the
     # sign opposite to F just past the point
-    at_q = np.flatnonzero(run["own_cut"][ray_of] & (node == q[ray_of]))
+    rays = run["rays"]
+    at_q = _position(run, run["q"][rays])
+    at_q = at_q[run["own_cut"][rays] & (at_q >= 0)]
     r_q = ray_of[at_q]
     known = s0[r_q] != 0
     out[r_q[known & (pos[at_q] != (s0[r_q] > 0))]] = True
     # cells where F turns back toward zero: locate the extremum
-    turn = turning & ~cut & ~change & ~touch[:-1] & ~touch[1:] & ~out[r1]
-    cells = np.flatnonzero(turn)
+    cells = val["turning"]
+    cells = cells[~cut[cells] & ~touch[cells] & ~touch[cells + 1] & ~out[ray_of[cells]]]
     if len(cells):
         ta, tb = tab["t"][node[cells]], tab["t"][node[cells] + 1]
         fe = _extrema(surface, ray, ray_of[cells], np.minimum(ta, tb), np.maximum(ta, tb))
@@ -236,10 +274,12 @@ def far_margin(
 ) -> np.ndarray:
     """For rays from points of the surface with a known sign ``s0 = +-1`` of
     ``F`` just past the point: the largest ``-s0 F`` over the scanned nodes
-    inside the range (``+ ftol`` off the rims: the band :func:`scan` counts
-    as touching) and over the extrema of the cells where ``F`` turns back
-    toward zero: positive exactly where :func:`scan` finds a hit, continuous
-    where the hit appears (NaN: a ray left to the general test)."""
+    inside the range (for ``s0 > 0`` all nodes past the point; ``+ ftol``
+    off the rims: the band :func:`scan` counts as touching) and over the
+    extrema of the cells where ``-s0 F`` rises and falls again (where the
+    nodes alone leave it at or below zero): positive exactly where
+    :func:`scan` finds a hit, continuous where the hit appears (NaN: a ray
+    left to the general test)."""
     n = len(s0)
     out = np.full(n, np.nan)
     known = s0 != 0
@@ -250,21 +290,25 @@ def far_margin(
     if not len(ray_of):
         out[known & ~run["undecided"]] = 0.0
         return out
-    m = len(tab["z"]) - 1
-    f, df, small, inside, _, same, cut, turning = _values(tab, ray, run, ftol)
-    pos = f > 0
-    r1 = ray_of[1:]
-    change = same & (pos[1:] != pos[:-1])
+    val = _values(tab, ray, run, ftol)
+    f, df, small, cut, inside = val["f"], val["df"], val["small"], val["cut"], val["inside"]
     bad = run["undecided"].copy()
-    bad[r1[cut & (change | turning | small[:-1] | small[1:])]] = True
+    tiny = np.zeros(len(f), bool)
+    tiny[small] = True
+    turning = np.zeros(len(cut), bool)
+    turning[val["turning"]] = True
+    ci = np.flatnonzero(cut)
+    bad[ray_of[ci[val["change"][ci] | turning[ci] | tiny[ci] | tiny[ci + 1]]]] = True
     sign = -s0[ray_of]
-    val = np.where(inside, sign * f + np.where((node > 0) & (node < m), ftol, 0.0), -np.inf)
+    v = np.where(inside, sign * f + np.where(val["inner"], ftol, 0.0), -np.inf)
     best = np.full(n, -np.inf)
-    np.maximum.at(best, ray_of, val)
-    # interior maxima of -s0 F: cells where it rises then falls
+    np.maximum.at(best, ray_of, v)
+    # interior maxima of -s0 F: cells where it rises then falls (needed only where
+    # the nodes leave the margin at or below zero: above, it is positive anyway)
     sa = sign[:-1]
-    rise = same & ~cut & (sa * df[:-1] > 0) & (sa * df[1:] < 0)
+    rise = val["same"] & ~cut & (sa * df[:-1] > 0) & (sa * df[1:] < 0)
     cells = np.flatnonzero(rise & inside[:-1] & inside[1:])
+    cells = cells[best[ray_of[cells]] <= 0]
     if len(cells):
         ta, tb = tab["t"][node[cells]], tab["t"][node[cells] + 1]
         fe = _extrema(surface, ray, ray_of[cells], np.minimum(ta, tb), np.maximum(ta, tb))
@@ -374,17 +418,20 @@ def _extrema(surface, ray, p, a, b) -> np.ndarray:  # noqa: ANN001
 
     ga = _ray_function(surface, ray, p, a)[1]
     gb = _ray_function(surface, ray, p, b)[1]
-    # F is flat at its extremum: t to 1e-9 gives F there to rounding level
-    te = newton(d_dd, a, b, ga, gb, 1e-9 * span, 0.0)
+    # F is flat at its extremum: t to 1e-9 gives F there to rounding level; start
+    # where the chord of F' crosses zero
+    x0 = a + ga / (ga - gb) * (b - a)
+    te = newton(d_dd, a, b, ga, gb, 1e-9 * span, 0.0, x0)
     return _ray_function(surface, ray, p, te)[0]
 
 
-def newton(f_df, a, b, fa, fb, xtol, ftol):  # noqa: ANN001, ANN202
+def newton(f_df, a, b, fa, fb, xtol, ftol, x0=None):  # noqa: ANN001, ANN202
     """Roots in brackets ``[a, b]`` (``fa``, ``fb`` of opposite signs): Newton steps
-    from the middle, bisection when a step leaves the bracket; all at once.
-    Stops at ``|f| <= ftol`` (rounding level) or a step below ``xtol``."""
+    from the middle (or from ``x0``), bisection when a step leaves the
+    bracket; all at once.  Stops at ``|f| <= ftol`` (rounding level) or a
+    step below ``xtol``."""
     a, b, fa = a.copy(), b.copy(), fa.copy()
-    x = 0.5 * (a + b)
+    x = 0.5 * (a + b) if x0 is None else np.clip(x0, a, b)
     idx = np.arange(len(a))
     for _ in range(80):
         xi = x[idx]
