@@ -10,7 +10,7 @@ nodes.  A root of the ray function ``F = c^2 (rho^2 - d^2) - k^2 (z - h*)^2``
 ``k^2 (z - h*)^2 <= c^2 (R^2 - d^2) + ftol`` with ``R`` a bound on ``rho``:
 a window of heights about ``h*``.  ``R`` starts as the profile's bound and is
 tightened to the largest bound of the cells the window still covers (a sparse
-table gives that range maximum at once for all rays), twice.  Only the nodes
+table gives that range maximum at once for all rays), once.  Only the nodes
 of the remaining cells are scanned, as in the general test: a sign change or
 a node at rounding level decides a hit, and a cell where ``F`` turns back
 toward zero has its extremum located.  No cell needs cutting at ``lam = eps``
@@ -23,8 +23,13 @@ root ``t0``.  There ``F'(t0) = -2 c rho |P'| N . v``, so just past ``t0``
 toward the viewer ``F`` has the sign ``-sign(N . v) sign(z')``; with at most
 one extremum of ``F`` in a cell (the grid's premise), the cell holds a second
 root past ``t0`` exactly when ``F`` at its far node has the other sign (or
-is at rounding level there).  So the own cell needs no refinement at all
-(docs/mathematics.rst, "Surfaces of revolution").
+is at rounding level there).  So the own cell needs no refinement at all.
+A contour point is the double root it stands for: ``F`` starts with the sign
+of ``F''(t0)``, which changes at the cusps of the apparent contour
+(:func:`cusp_function`).  :func:`far_margin` turns the same scan into a
+transition function whose sign is the test's answer (docs/mathematics.rst,
+"Surfaces of revolution": monotone heights, the own cell, contour points and
+cusps, the far margin).
 """
 
 from __future__ import annotations

@@ -12,8 +12,15 @@ point ``x`` (ray ``x + s v`` toward the viewer) where
   ``k^2 = 1 - c^2``, ``d`` the line's distance from the axis and ``h*`` the
   height where it comes closest; the ray function of
   :mod:`lgraph.surfaces._revolution_hits` at ``t_e``), smooth in ``x``;
-* the ray grazes the surface elsewhere (not supplied: such flips are
-  bisected on the full test).
+* the ray grazes the surface elsewhere: two roots of ``F`` merge at an
+  extremum (:func:`~lgraph.surfaces._revolution_hits.grazing`).
+
+For a profile with monotone heights the rims and grazing rays are covered by
+one function, the far margin of :mod:`lgraph.surfaces._revolution_fast`
+(positive exactly where the ray test hits past the point's own cell, and
+continuous also where a pair of extrema of ``F`` is born), and contour
+points get ``F''`` at the point, which vanishes at the cusps of the apparent
+contour.
 
 :meth:`SurfaceOfRevolution.visibility_margins` returns these functions; the
 renderer root-finds the one that changes sign across a flip and verifies the
