@@ -256,8 +256,7 @@ def scan(
     cells = val["turning"]
     cells = cells[~cut[cells] & ~touch[cells] & ~touch[cells + 1] & ~out[ray_of[cells]]]
     if len(cells):
-        ta, tb = tab["t"][node[cells]], tab["t"][node[cells] + 1]
-        fe = _extrema(surface, ray, ray_of[cells], np.minimum(ta, tb), np.maximum(ta, tb))
+        fe = _cell_extrema(surface, tab, ray, run, val["df"], cells)
         hit = ((fe > 0) != (f[cells] > 0)) | (np.abs(fe) <= ftol)
         out[ray_of[cells[hit]]] = True
     # the own cell of the others, cut at lam = eps, as in the general test
@@ -291,7 +290,7 @@ def far_margin(
     # a ray into the solid (s0 > 0) is hidden where F turns negative: the cells
     # the window leaves out (F < -ftol there) count too
     run = _runs(tab, ray, known, ftol, window=s0 < 0)
-    ray_of, node = run["ray_of"], run["node"]
+    ray_of = run["ray_of"]
     if not len(ray_of):
         out[known & ~run["undecided"]] = 0.0
         return out
@@ -307,7 +306,7 @@ def far_margin(
     sign = -s0[ray_of]
     v = np.where(inside, sign * f + np.where(val["inner"], ftol, 0.0), -np.inf)
     best = np.full(n, -np.inf)
-    np.maximum.at(best, ray_of, v)
+    best[run["rays"]] = np.maximum.reduceat(v, run["start"])  # the runs are contiguous
     # interior maxima of -s0 F: cells where it rises then falls (needed only where
     # the nodes leave the margin at or below zero: above, it is positive anyway)
     sa = sign[:-1]
@@ -315,8 +314,7 @@ def far_margin(
     cells = np.flatnonzero(rise & inside[:-1] & inside[1:])
     cells = cells[best[ray_of[cells]] <= 0]
     if len(cells):
-        ta, tb = tab["t"][node[cells]], tab["t"][node[cells] + 1]
-        fe = _extrema(surface, ray, ray_of[cells], np.minimum(ta, tb), np.maximum(ta, tb))
+        fe = _cell_extrema(surface, tab, ray, run, df, cells)
         np.maximum.at(best, ray_of[cells], sa[cells] * fe + ftol)
     ok = known & ~bad
     # no node to scan: nothing past the point can hide it (a point within eps of
@@ -404,9 +402,23 @@ def _own_cut_cell(surface, tab, ray, p, io, ze, q, fq, touch_q, ftol, out) -> No
         out[p[k][((fx > 0) != (fq[k] > 0)) | (np.abs(fx) <= ftol)]] = True
 
 
-def _extrema(surface, ray, p, a, b) -> np.ndarray:  # noqa: ANN001
+def _cell_extrema(surface, tab, ray, run, df, cells) -> np.ndarray:  # noqa: ANN001
+    """``F`` at the extremum inside the scanned cells ``cells`` (pairs of
+    consecutive entries), from the nodes' derivatives (``df`` along the
+    nodes is ``mono F' / 2``)."""
+    node = run["node"][cells]
+    t = tab["t"]
+    if tab["mono"] > 0:
+        a, b, ga, gb = t[node], t[node + 1], df[cells], df[cells + 1]
+    else:
+        a, b, ga, gb = t[node + 1], t[node], -df[cells + 1], -df[cells]
+    return _extrema(surface, ray, run["ray_of"][cells], a, b, ga, gb)
+
+
+def _extrema(surface, ray, p, a, b, ga=None, gb=None) -> np.ndarray:  # noqa: ANN001
     """``F`` of rays ``p`` at the extremum in ``[a, b]`` (where ``F'``
-    changes sign)."""
+    changes sign; ``ga``, ``gb``: ``F'`` at the ends up to a common positive
+    factor, when known)."""
     c, k2, _, hs = ray[:4]
     span = float(np.ptp(surface._grid["t"]))
 
@@ -421,11 +433,12 @@ def _extrema(surface, ray, p, a, b) -> np.ndarray:  # noqa: ANN001
             2 * (cc * (dr * dr + rr * ddr) - kk * (dzz * dzz + hh * ddz)),
         )
 
-    ga = _ray_function(surface, ray, p, a)[1]
-    gb = _ray_function(surface, ray, p, b)[1]
+    if ga is None:
+        ga = _ray_function(surface, ray, p, a)[1]
+        gb = _ray_function(surface, ray, p, b)[1]
     # F is flat at its extremum: t to 1e-9 gives F there to rounding level; start
     # where the chord of F' crosses zero
-    x0 = a + ga / (ga - gb) * (b - a)
+    x0 = a + ga / (ga - gb) * (b - a)  # inside: ga, gb of opposite signs
     te = newton(d_dd, a, b, ga, gb, 1e-9 * span, 0.0, x0)
     return _ray_function(surface, ray, p, te)[0]
 
