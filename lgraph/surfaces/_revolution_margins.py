@@ -15,8 +15,8 @@ point ``x`` (ray ``x + s v`` toward the viewer) where
 * the ray grazes the surface elsewhere: two roots of ``F`` merge at an
   extremum (:func:`~lgraph.surfaces._revolution_hits.grazing`).
 
-For a profile with monotone heights the rims and grazing rays are covered by
-one function, the far margin of :mod:`lgraph.surfaces._revolution_fast`
+For a profile with monotone heights grazing rays (and rims again) are covered
+by one function, the far margin of :mod:`lgraph.surfaces._revolution_fast`
 (positive exactly where the ray test hits past the point's own cell, and
 continuous also where a pair of extrema of ``F`` is born), and contour
 points get ``F''`` at the point, which vanishes at the cusps of the apparent
@@ -79,11 +79,12 @@ def margins(
 ) -> np.ndarray:
     """The transition functions, ``(k, n)`` (only row ``which`` when given): on
     a certified convex surface its exact hiding margin alone; otherwise
-    ``N . v / |v|`` (NaN where ``uv`` is unknown and on contour curves), then
-    for a profile with monotone heights the cusp function of contour points
-    and the far margin (:func:`far_rows`), for other profiles one rim
-    function per boundary parallel that is not a pole, and the grazing
-    function (:func:`~lgraph.surfaces._revolution_hits.grazing`)."""
+    ``N . v / |v|`` (NaN where ``uv`` is unknown and on contour curves), one
+    rim function per boundary parallel that is not a pole (cheap and smooth:
+    tried before the rest), then for a profile with monotone heights the
+    cusp function of contour points and the far margin (:func:`far_rows`),
+    for other profiles the grazing function
+    (:func:`~lgraph.surfaces._revolution_hits.grazing`)."""
     o = np.asarray(origins, float).reshape(-1, 3)
     v = np.asarray(directions, float).reshape(-1, 3)
     own = np.asarray(own)
@@ -91,10 +92,10 @@ def margins(
         return margin(surface, o, v, smax, own, uv)[None]
     t = np.full(len(o), np.nan) if uv is None else np.asarray(uv, float).reshape(-1, 2)[:, 0]
     tab = monotone_tables(surface, _blocks(surface)["cellpad"])
-    rims = [] if surface.profile_closed or tab is not None else [
+    rims = [] if surface.profile_closed else [
         end for end, pole in zip(surface.t_range, surface.poles) if not pole
     ]  # fmt: skip
-    n_rows = 3 if tab is not None else len(rims) + 2
+    n_rows = len(rims) + (3 if tab is not None else 2)
 
     def row(k: int) -> np.ndarray:
         if k == 0:
@@ -103,10 +104,10 @@ def margins(
             if len(on):
                 nv[on] = normal_component(surface, o[on], v[on], t[on])
             return nv
-        if tab is not None:
-            return far_rows(surface, tab, o, v, smax, own, t, k)
         if k <= len(rims):
             return rim_function(surface, o, v, rims[k - 1])
+        if tab is not None:
+            return far_rows(surface, tab, o, v, smax, own, t, k - len(rims))
         return grazing(surface, o, v, smax, own)
 
     if which is not None:
