@@ -84,7 +84,7 @@ def _curves(
 ) -> list[tuple[float, float, int, bool]]:
     """``(ta, tb, kind, closed)`` of every contour curve (``d_of``: ``D(t)``,
     ``dd_of``: ``(D, D')``; the folds by safeguarded Newton steps)."""
-    from ._revolution_hits import _newton
+    from ._revolution_fast import newton
 
     g = surface._grid
     t = g["t"]
@@ -96,7 +96,7 @@ def _curves(
     open_ = np.flatnonzero(dv[j] != 0)
     if len(open_):
         k = j[open_]
-        folds[open_] = _newton(
+        folds[open_] = newton(
             lambda x, sel: dd_of(x), t[k], t[k + 1], dv[k], dv[k + 1], 4e-16 * span, 0.0
         )
     # intervals (ta, tb, fold at ta, fold at tb) where D >= 0

@@ -36,7 +36,8 @@ import numpy as np
 
 from .._own import CONTOUR, OFF, ON
 from .._tolerance import SELF_HIT_RTOL
-from ._revolution_local import near_own_hits
+from ._revolution_fast import monotone_tables, newton, own_sign, scan
+from ._revolution_local import own_second_root, point_parameters
 
 if TYPE_CHECKING:
     from .revolution import SurfaceOfRevolution
@@ -151,7 +152,7 @@ def grazing(
         )
 
     # F is flat at its extremum: t to 1e-9 gives F there to rounding level
-    te = _newton(d_dd, t[cj], t[cj + 1], dF[ri, cj], dF[ri, cj + 1], 1e-9 * span, 0.0)
+    te = newton(d_dd, t[cj], t[cj + 1], dF[ri, cj], dF[ri, cj + 1], 1e-9 * span, 0.0)
     rr, zz = surface.rz(te)
     h = zz - hs[ri]
     fe = (c * c)[ri] * (rr * rr - d2[ri]) - k2[ri] * h * h
@@ -176,7 +177,14 @@ def hits(
     directions: np.ndarray,
     smax: np.ndarray,
     own: np.ndarray | None = None,
+    *,
+    general: bool = False,
 ) -> np.ndarray:
+    """Which rays ``origins + s directions``, ``0 < s < smax``, meet the surface
+    (``own``: where the origins lie, see :mod:`lgraph._own`).  Rays of a
+    profile with monotone heights go through :func:`~lgraph.surfaces.
+    _revolution_fast.scan`, the others (and all, with ``general=True``: the
+    reference for tests) through the scan of ring-bounded blocks."""
     o = np.asarray(origins, dtype=float).reshape(-1, 3)
     v = np.asarray(directions, dtype=float).reshape(-1, 3)
     n = len(o)
@@ -194,11 +202,44 @@ def hits(
     rtol = np.where((own == ON) & flat, FLAT_RTOL, rtol)
     eps = rtol * size
     on = np.flatnonzero(own == ON)
+    nv, t_own = np.full(n, np.nan), np.full(n, np.nan)
     if len(on):  # second roots near the point's own (at its contour): local analysis
         cut = CONTOUR_SELF_RTOL * size
-        out[on], decided = near_own_hits(surface, o[on], vh[on], cut)
+        out[on], decided, nv[on], t_own[on] = own_second_root(surface, o[on], vh[on], cut)
         eps[on[decided]] = np.maximum(eps[on[decided]], cut)
+    rest = np.flatnonzero(~out)
     blk = _blocks(surface)
+    tab = None if general else monotone_tables(surface, blk["cellpad"])
+    if tab is not None:  # monotone heights: one run of cells per steep ray
+        fast = rest[~flat[rest]]
+        con = fast[own[fast] == CONTOUR]
+        if len(con):
+            t_own[con] = point_parameters(surface, o[con])
+        ray = (c[fast], k2[fast], d2[fast], hstar[fast], oa[fast], eps[fast], lam_max[fast])
+        s0 = own_sign(surface, tab, ray, own[fast] == CONTOUR, t_own[fast], nv[fast])
+        sub = np.zeros(len(fast), bool)
+        done = scan(surface, tab, ray, own[fast] != OFF, s0, GRAZE_FTOL * size * size, sub)
+        out[fast] = sub
+        keep = np.ones(n, bool)
+        keep[fast[done]] = False
+        rest = rest[keep[rest]]
+    if not len(rest):
+        return out
+    if len(rest) < n:  # the general test on the rest
+        sub = out[rest]
+        _general(surface, blk, rest, oa, c, k2, d2, hstar, sstar, eps, lam_max, sub)
+        out[rest] = sub
+    else:
+        _general(surface, blk, slice(None), oa, c, k2, d2, hstar, sstar, eps, lam_max, out)
+    return out
+
+
+def _general(surface, blk, sel, oa, c, k2, d2, hstar, sstar, eps, lam_max, out) -> None:  # noqa: ANN001
+    """The scan on ring-bounded blocks of the grid for the rays ``sel``."""
+    oa, c, k2, d2, hstar, sstar, eps, lam_max = (
+        x[sel] for x in (oa, c, k2, d2, hstar, sstar, eps, lam_max)
+    )
+    n = len(c)
     nb = len(blk["j0"])
     step = max(1, CHUNK // nb)
     pairs_r, pairs_b = [], []
@@ -209,10 +250,9 @@ def hits(
         pairs_b.append(b)
     pr, pb = np.concatenate(pairs_r), np.concatenate(pairs_b)
     if not len(pr):
-        return out
+        return
     ray = (c, k2, d2, hstar, sstar, eps, lam_max)
     _narrow(surface, blk, pr, pb, ray, out)
-    return out
 
 
 def _broad(blk: dict, oa, c, k2, d2, ss, eps, lam_max) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
@@ -235,34 +275,6 @@ def _broad(blk: dict, oa, c, k2, d2, ss, eps, lam_max) -> tuple[np.ndarray, np.n
         rmax2 = D2 + K2 * far * far
     ok = (hi >= lo) & (rmin2 <= blk["rhi"] ** 2) & (rmax2 >= blk["rlo"] ** 2)
     return np.nonzero(ok)
-
-
-def _newton(f_df, a, b, fa, fb, xtol, ftol):  # noqa: ANN001, ANN202
-    """Roots in brackets ``[a, b]`` (``fa``, ``fb`` of opposite signs): Newton steps
-    from the middle, bisection when a step leaves the bracket; all at once.
-    Stops at ``|f| <= ftol`` (rounding level) or a step below ``xtol``."""
-    a, b, fa = a.copy(), b.copy(), fa.copy()
-    x = 0.5 * (a + b)
-    idx = np.arange(len(a))
-    for _ in range(80):
-        xi = x[idx]
-        f, df = f_df(xi, idx)
-        left = (f > 0) == (fa[idx] > 0)  # root in [x, b]
-        ai = np.where(left, xi, a[idx])
-        bi = np.where(left, b[idx], xi)
-        a[idx], b[idx] = ai, bi
-        fa[idx] = np.where(left, f, fa[idx])
-        with np.errstate(invalid="ignore", divide="ignore"):
-            nx = xi - f / df
-        newton = (nx >= ai) & (nx <= bi)
-        nx = np.where(newton, nx, 0.5 * (ai + bi))
-        x[idx] = nx
-        converged = newton & (np.abs(nx - xi) <= xtol)
-        keep = (np.abs(f) > ftol) & ~converged & (bi - ai > xtol)
-        idx = idx[keep]
-        if not len(idx):
-            break
-    return x
 
 
 def _trimmed(surface: SurfaceOfRevolution, ray, pr, p, a, b, za, zb, dza, span):  # noqa: ANN001, ANN202
@@ -288,7 +300,7 @@ def _trimmed(surface: SurfaceOfRevolution, ray, pr, p, a, b, za, zb, dza, span):
             def f_df(x: np.ndarray, sel: np.ndarray, zt: np.ndarray = zt, k: np.ndarray = k) -> Any:
                 return surface.rz(x)[1] - zt[sel], surface.drz(x)[1]
 
-            tc = _newton(f_df, lo_t[k], hi_t[k], za[k] - zt, zb[k] - zt, 4e-16 * span, 0.0)
+            tc = newton(f_df, lo_t[k], hi_t[k], za[k] - zt, zb[k] - zt, 4e-16 * span, 0.0)
             # the end outside the range moves to the cut
             lo_t[k] = np.where(ina[k], lo_t[k], tc)
             hi_t[k] = np.where(ina[k], tc, hi_t[k])
@@ -408,7 +420,7 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
             )
 
         # F is flat at its extremum: t to 1e-9 gives F there to rounding level
-        te = _newton(d_dd, ta[ei], tb[ei], ga0[ei], gb0[ei], 1e-9 * span, 0.0)
+        te = newton(d_dd, ta[ei], tb[ei], ga0[ei], gb0[ei], 1e-9 * span, 0.0)
         fe = f_at(te, ep)
         flip = (fe > 0) != (fa0[ei] > 0)
         touch = np.abs(fe) <= ftol
@@ -436,7 +448,7 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
             return cc * (rr * rr - d2[p]) - k2[p] * h * h, 2 * (cc * rr * dr - k2[p] * h * dzz)
 
         root_p.append(bp)
-        root_t.append(_newton(f_df, a_, b_, fa, fb, 4e-16 * span, NEWTON_FTOL * size * size))
+        root_t.append(newton(f_df, a_, b_, fa, fb, 4e-16 * span, NEWTON_FTOL * size * size))
     rp, tt = np.concatenate(root_p), np.concatenate(root_t)
     if not len(rp):
         return

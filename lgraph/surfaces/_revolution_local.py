@@ -20,7 +20,7 @@ from ._revolution_convex import t_of_points
 if TYPE_CHECKING:
     from .revolution import SurfaceOfRevolution
 
-__all__ = ["near_own_hits", "normal_component"]
+__all__ = ["near_own_hits", "normal_component", "own_second_root", "point_parameters"]
 
 
 def normal_component(
@@ -43,12 +43,21 @@ def normal_component(
 def near_own_hits(
     surface: SurfaceOfRevolution, o: np.ndarray, vh: np.ndarray, eps: float
 ) -> tuple[np.ndarray, np.ndarray]:
+    """The first two outputs of :func:`own_second_root`."""
+    hit, decided, _, _ = own_second_root(surface, o, vh, eps)
+    return hit, decided
+
+
+def own_second_root(
+    surface: SurfaceOfRevolution, o: np.ndarray, vh: np.ndarray, eps: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Rays from points ``o`` on the surface (unit directions ``vh``) that meet
     it again at ``0 < lam <= eps``, where the ray test cannot tell the second
     root from the point's own (near the contour the two roots of the ray
     function merge, and a near-double root is found to about the square root
-    of the rounding level only), and which points were decided (the second
-    output): near the point the surface lies at
+    of the rounding level only), which points were decided (the second
+    output), ``N . v / |v|`` there and their parameters ``t`` (NaN where not
+    decided): near the point the surface lies at
     ``II(xi, xi) / 2`` above the tangent plane and the ray at ``lam N . v``, so
     the second root is ``lam2 = 2 N . v / II(v, v)`` with
     ``II(v, v) = k_m (v . e_m)^2 + k_p (v . e_p)^2`` (meridian and parallel
@@ -61,7 +70,7 @@ def near_own_hits(
     g = surface._grid
     dzs = np.diff(g["z"])
     if not len(o) or not (np.all(dzs > 0) or np.all(dzs < 0)):
-        return out, out.copy()
+        return out, out.copy(), np.full(len(o), np.nan), np.full(len(o), np.nan)
     a = surface.frame[2]
     h = o @ a
     radial = o - h[:, None] * a
@@ -83,4 +92,17 @@ def near_own_hits(
         k_p = -dz / (rho * speed)
         lam2 = 2 * nv / (k_m * vm * vm + k_p * vp * vp)
     found &= r > 0
-    return found & (lam2 > 0) & (lam2 <= eps), found
+    hit = found & (lam2 > 0) & (lam2 <= eps)
+    return hit, found, np.where(found, nv, np.nan), np.where(found, t, np.nan)
+
+
+def point_parameters(surface: SurfaceOfRevolution, o: np.ndarray) -> np.ndarray:
+    """The parameter ``t`` of points ``o`` on the surface (NaN where it is not
+    recovered to ``1e-9`` of the size; profiles with monotone heights)."""
+    a = surface.frame[2]
+    h = o @ a
+    radial = o - h[:, None] * a
+    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
+    t = t_of_points(surface, h, r)
+    rho, z = surface.rz(t)
+    return np.where(np.hypot(rho - r, z - h) <= 1e-9 * surface.size, t, np.nan)
