@@ -57,7 +57,12 @@ def _fd_normal(s, u1, u2, h=1e-6):
     "make, message",
     [
         (lambda: lg.SurfaceOfRevolution(lambda t: (t - 1, t), (0, 2)), "rho >= 0"),
-        (lambda: lg.SurfaceOfRevolution(lambda t: (np.sqrt(t), t), (-1, 1)), "finite"),
+        (
+            lambda: lg.SurfaceOfRevolution(
+                lambda t: (np.where(t < 0, np.nan, t) ** 0.5, t), (-1, 1)
+            ),
+            "finite",
+        ),
         (lambda: lg.SurfaceOfRevolution(lambda t: (1 + 0 * t, t), (1, 1)), "t_range"),
         (lambda: lg.SurfaceOfRevolution(lambda t: (1 + 0 * t, t), (0, 1), axis=(0, 0, 0)), "axis"),
         (lambda: lg.SurfaceOfRevolution(lambda t: (0 * t, t), (0, 1)), "leave the axis"),

@@ -81,6 +81,23 @@ def _t_guess(surface: SurfaceOfRevolution, h: np.ndarray) -> tuple[np.ndarray, n
     return x, (k if up else len(z) - 2 - k)
 
 
+def meridian_coordinates(
+    surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Height ``h = o . a`` and distance ``r`` from the axis of points ``o``,
+    and (given ``v``) ``r^ . v`` with ``r^`` the radial unit vector (any unit
+    vector at the axis, where ``z' = 0``)."""
+    a = surface.frame[2]
+    h = o @ a
+    radial = o - h[:, None] * a
+    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
+    if v is None:
+        return h, r, None
+    rv = np.einsum("ij,ij->i", radial, v)
+    np.divide(rv, r, out=rv, where=r > 0)
+    return h, r, rv
+
+
 def t_of_points(
     surface: SurfaceOfRevolution, h: np.ndarray, r: np.ndarray, x: np.ndarray | None = None
 ) -> np.ndarray:
@@ -180,14 +197,8 @@ def margin(
         return out
     if len(on) < len(o):
         o, v = o[on], v[on]
-    a = surface.frame[2]
-    h = o @ a
-    radial = o - h[:, None] * a
-    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
-    # r^ . v, with r^ = radial / r (any unit vector at the axis, where z' = 0)
-    rv = np.einsum("ij,ij->i", radial, v)
-    np.divide(rv, r, out=rv, where=r > 0)
-    va = v @ a
+    h, r, rv = meridian_coordinates(surface, o, v)
+    va = v @ surface.frame[2]
     vn = np.sqrt(np.einsum("ij,ij->i", v, v))
 
     def at(t: np.ndarray, sel: np.ndarray | slice) -> np.ndarray:

@@ -30,6 +30,7 @@ cells straddling those limits are refined (safeguarded Newton on ``F``).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -107,6 +108,25 @@ def ray_terms(surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray) -> tup
     return speed, vh, oa, c, k2, d2, oa + c * sstar, sstar
 
 
+def ray_derivatives(
+    surface: SurfaceOfRevolution, c2: np.ndarray, k2: np.ndarray, hs: np.ndarray
+) -> Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """``(F', F'')`` at ``t = x`` of the rays ``rows`` (per-ray ``c^2``,
+    ``k^2`` and ``h*``; ``F = c^2 (rho^2 - d^2) - k^2 (z - h*)^2``)."""
+
+    def d_dd(x: np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        rr, zz = surface.rz(x)
+        dr, dzz = surface.drz(x)
+        ddr, ddz = surface.ddrz(x)
+        cc, kk, h = c2[rows], k2[rows], zz - hs[rows]
+        return (
+            2 * (cc * rr * dr - kk * h * dzz),
+            2 * (cc * (dr * dr + rr * ddr) - kk * (dzz * dzz + h * ddz)),
+        )
+
+    return d_dd
+
+
 def grazing(
     surface: SurfaceOfRevolution,
     origins: np.ndarray,
@@ -140,16 +160,10 @@ def grazing(
     if not len(ri):
         return out
 
+    derivatives = ray_derivatives(surface, c * c, k2, hs)
+
     def d_dd(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        p = ri[sel]
-        rr, zz = surface.rz(x)
-        dr, dzz = surface.drz(x)
-        ddr, ddz = surface.ddrz(x)
-        cc, kk, h = (c * c)[p], k2[p], zz - hs[p]
-        return (
-            2 * (cc * rr * dr - kk * h * dzz),
-            2 * (cc * (dr * dr + rr * ddr) - kk * (dzz * dzz + h * ddz)),
-        )
+        return derivatives(x, ri[sel])
 
     # F is flat at its extremum: t to 1e-9 gives F there to rounding level
     te = newton(d_dd, t[cj], t[cj + 1], dF[ri, cj], dF[ri, cj + 1], 1e-9 * span, 0.0)
@@ -408,16 +422,10 @@ def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None: 
     if len(ei):
         ep = ci[ei]
 
+        derivatives = ray_derivatives(surface, c * c, k2, hs)
+
         def d_dd(x: np.ndarray, sel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            p = pr[ep[sel]]
-            rr, zz = surface.rz(x)
-            dr, dzz = surface.drz(x)
-            ddr, ddz = surface.ddrz(x)
-            cc, kk, h = (c * c)[p], k2[p], zz - hs[p]
-            return (
-                2 * (cc * rr * dr - kk * h * dzz),
-                2 * (cc * (dr * dr + rr * ddr) - kk * (dzz * dzz + h * ddz)),
-            )
+            return derivatives(x, pr[ep[sel]])
 
         # F is flat at its extremum: t to 1e-9 gives F there to rounding level
         te = newton(d_dd, ta[ei], tb[ei], ga0[ei], gb0[ei], 1e-9 * span, 0.0)

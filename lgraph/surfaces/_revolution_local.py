@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._revolution_convex import t_of_points
+from ._revolution_convex import meridian_coordinates, t_of_points
 
 if TYPE_CHECKING:
     from .revolution import SurfaceOfRevolution
@@ -29,15 +29,12 @@ def normal_component(
     """``N . v / |v|`` at points ``o`` with parameter ``t`` (``N = (z' r - rho' a)
     / |P'|``, ``r`` the radial unit vector; any unit vector at the axis, where
     ``z' = 0``)."""
-    a = surface.frame[2]
-    h = o @ a
-    radial = o - h[:, None] * a
-    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
-    rv = np.einsum("ij,ij->i", radial, v)
-    np.divide(rv, r, out=rv, where=r > 0)
+    _, _, rv = meridian_coordinates(surface, o, v)
     dr, dz = surface.drz(t)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return (dz * rv - dr * (v @ a)) / (np.hypot(dr, dz) * np.sqrt(np.einsum("ij,ij->i", v, v)))
+        return (dz * rv - dr * (v @ surface.frame[2])) / (
+            np.hypot(dr, dz) * np.sqrt(np.einsum("ij,ij->i", v, v))
+        )
 
 
 def near_own_hits(
@@ -72,12 +69,9 @@ def own_second_root(
     if not len(o) or not (np.all(dzs > 0) or np.all(dzs < 0)):
         return out, out.copy(), np.full(len(o), np.nan), np.full(len(o), np.nan)
     a = surface.frame[2]
-    h = o @ a
+    h, r, _ = meridian_coordinates(surface, o)
     radial = o - h[:, None] * a
-    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
-    t = t_of_points(surface, h, r)
-    rho, z = surface.rz(t)
-    found = np.hypot(rho - r, z - h) <= 1e-9 * surface.size
+    t, rho, found = _recovered(surface, h, r)
     dr, dz = surface.drz(t)
     ddr, ddz = surface.ddrz(t)
     speed = np.hypot(dr, dz)
@@ -99,10 +93,16 @@ def own_second_root(
 def point_parameters(surface: SurfaceOfRevolution, o: np.ndarray) -> np.ndarray:
     """The parameter ``t`` of points ``o`` on the surface (NaN where it is not
     recovered to ``1e-9`` of the size; profiles with monotone heights)."""
-    a = surface.frame[2]
-    h = o @ a
-    radial = o - h[:, None] * a
-    r = np.sqrt(np.einsum("ij,ij->i", radial, radial))
+    h, r, _ = meridian_coordinates(surface, o)
+    t, _, found = _recovered(surface, h, r)
+    return np.where(found, t, np.nan)
+
+
+def _recovered(
+    surface: SurfaceOfRevolution, h: np.ndarray, r: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``t`` of the meridian points ``(r, h)``, ``rho(t)``, and whether the
+    point lies on the profile there to ``1e-9`` of the size."""
     t = t_of_points(surface, h, r)
     rho, z = surface.rz(t)
-    return np.where(np.hypot(rho - r, z - h) <= 1e-9 * surface.size, t, np.nan)
+    return t, rho, np.hypot(rho - r, z - h) <= 1e-9 * surface.size

@@ -52,17 +52,7 @@ def rim_function(
 ) -> np.ndarray:
     """``F_e / size^2`` (module docstring): zero where the line ``o + s v``
     meets the parallel ``t_e``."""
-    a = surface.frame[2]
-    vh = v / np.sqrt(np.einsum("ij,ij->i", v, v))[:, None]
-    oa, c = o @ a, vh @ a
-    op = o - oa[:, None] * a
-    vp = vh - c[:, None] * a
-    k2 = np.einsum("ij,ij->i", vp, vp)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        sstar = np.where(k2 > 1e-300, -np.einsum("ij,ij->i", op, vp) / k2, 0.0)
-    q = op + sstar[:, None] * vp
-    d2 = np.einsum("ij,ij->i", q, q)
-    hstar = oa + c * sstar
+    _, _, _, c, k2, d2, hstar, _ = ray_terms(surface, o, v)
     rho_e, z_e = (float(x[0]) for x in surface.rz(np.array([t_e])))
     f = c * c * (rho_e * rho_e - d2) - k2 * (z_e - hstar) ** 2
     return f / surface.size**2
