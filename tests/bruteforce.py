@@ -60,3 +60,17 @@ def classify(objects, projector, points, owners, eps=1e-9, patch=None):
             m = np.minimum(m, np.where(np.isfinite(r) & ~is_self, np.abs(smax - r) / size, np.inf))
             margin = np.minimum(margin, m)
     return hidden, margin
+
+
+def sign_changes(g):
+    """A brute-force ray march read off samples ``g (rays, n)`` of an implicit
+    function along each ray (NaN off the surface's patch): ``(hit, margin)``,
+    ``hit`` where ``g`` changes sign, ``margin`` the smallest ``|g|`` at a
+    turning point of ``g`` (a near-tangency, where the march is unreliable)."""
+    hit = ((np.sign(g[:, 1:]) * np.sign(g[:, :-1])) < 0).any(axis=1)
+    dg = np.diff(g, axis=1)
+    turn = np.zeros_like(g, dtype=bool)
+    turn[:, 1:-1] = dg[:, 1:] * dg[:, :-1] <= 0
+    with np.errstate(invalid="ignore"):
+        margin = np.nanmin(np.where(turn, np.abs(g), np.inf), axis=1)
+    return hit, margin

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from bruteforce import sign_changes
 
 import lgraph as lg
 from lgraph._own import CONTOUR, ON
@@ -240,14 +241,7 @@ def _march(name, o, v, smax, start=0.0, n=20000):
     near-tangency, where the march itself is unreliable)."""
     lam = start + (np.minimum(smax, 12.0) - start)[:, None] * np.linspace(0, 1, n)[None, :]
     g = _inside(name, o[:, None, :] + lam[..., None] * v[:, None, :])
-    ch = (np.sign(g[:, 1:]) * np.sign(g[:, :-1])) < 0
-    hit = ch.any(axis=1)
-    dg = np.diff(g, axis=1)
-    turn = np.zeros_like(g, dtype=bool)
-    turn[:, 1:-1] = dg[:, 1:] * dg[:, :-1] <= 0
-    with np.errstate(invalid="ignore"):
-        margin = np.nanmin(np.where(turn, np.abs(g), np.inf), axis=1)
-    return hit, margin
+    return sign_changes(g)
 
 
 @pytest.mark.parametrize("name", ["egg", "tilted", "torus", "plain"])

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from bruteforce import sign_changes
 
 import lgraph as lg
 from lgraph._own import ON
@@ -58,13 +59,7 @@ def _march(name, o, v, lam_max, start=2e-3, n=6000):
     lam = start + (np.minimum(lam_max, 14.0) - start)[:, None] * np.linspace(0, 1, n)
     p = o[:, None, :] + lam[..., None] * v[:, None, :]
     g = np.hypot(p[..., 0], p[..., 1]) - _radius(name, p[..., 2])
-    hit = ((np.sign(g[:, 1:]) * np.sign(g[:, :-1])) < 0).any(axis=1)
-    dg = np.diff(g, axis=1)
-    turn = np.zeros_like(g, dtype=bool)
-    turn[:, 1:-1] = dg[:, 1:] * dg[:, :-1] <= 0
-    with np.errstate(invalid="ignore"):
-        margin = np.nanmin(np.where(turn, np.abs(g), np.inf), axis=1)
-    return hit, margin
+    return sign_changes(g)
 
 
 @pytest.mark.parametrize("pname", list(PROJECTORS))
