@@ -216,15 +216,16 @@ def level_batches(
     """Batches (one per value) of the numeric level lines ``f(u1, u2) = value``,
     projected onto the level to ``LEVEL_FTOL * spread`` when evaluated."""
     from ..surfaces._numeric_contour import project_to_zero, zero_set_batch
-    from ..surfaces._zero_set import zero_set
+    from ..surfaces._zero_set import grid_parameters, zero_set
 
+    on_grid = f(*grid_parameters(surface, grid))  # once for all values
     out = []
     for value in np.atleast_1d(np.asarray(values, float)).tolist():
 
         def g(u1: Any, u2: Any, value: float = value) -> np.ndarray:
             return f(u1, u2) - value
 
-        curves = zero_set(surface, g, grid)
+        curves = zero_set(surface, g, grid, values=on_grid - value)
         if not curves:
             continue
 
