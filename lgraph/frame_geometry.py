@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ._tolerance import PIXEL_TOLERANCE
+from ._tolerance import MIN_CHORD_TOLERANCE, PIXEL_TOLERANCE
 from .page import Page
 from .projectors import Projector
 
@@ -98,7 +98,5 @@ def pixel_tolerance(page: Page) -> float:
     >>> round(pixel_tolerance(Page(width=480.0, height=343.0, margin=14.4)) * 1e4, 2)
     4.55
     """
-    from . import _tolerance as tol
-
     inner = math.hypot(page.width - 2 * page.margin, page.height - 2 * page.margin)
-    return min(0.1, max(tol.MIN_CHORD_TOLERANCE, PIXEL_TOLERANCE / inner))
+    return min(0.1, max(MIN_CHORD_TOLERANCE, PIXEL_TOLERANCE / inner))
