@@ -9,6 +9,10 @@ projected extent), so the figure keeps its place and scale.
 The geometry that does not depend on the view (lines of curvature,
 geodesics, ...) is computed once per process (:mod:`lgraph.families.cache`);
 only the contour, the sampling and the visibility are redone per frame.
+Consecutive views are rendered together, :data:`BATCH_FRAMES` at a time
+(:func:`lgraph.render.render_views`: each stage of the pipeline runs once
+for all of them), wherever they run, so the frames are the same wherever
+they are rendered.
 
 Frames run in this process, in a local process pool (the default for many
 frames that take long), or on any :class:`concurrent.futures.Executor` --
@@ -32,17 +36,15 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import io
-import math
 import os
 import pickle
-import sys
 import time
 import uuid
 import warnings
 from collections import deque
 from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any
 
 import attrs
 import numpy as np
@@ -52,7 +54,9 @@ from .drawing import Drawing, Stroke
 from .frame_geometry import PIXEL_TOLERANCE, frame_window, pixel_tolerance
 from .frame_writers import GifWriter, writer_for
 from .page import Page
+from .progress import Progress
 from .projectors import Projector
+from .render import render_views
 
 __all__ = [
     "animate",
@@ -60,6 +64,7 @@ __all__ = [
     "pixel_tolerance",
     "PARALLEL_MIN_FRAMES",
     "POOL_MIN_SECONDS",
+    "BATCH_FRAMES",
     "MAX_WIDTH",
     "PIXEL_TOLERANCE",
 ]
@@ -69,11 +74,18 @@ PARALLEL_MIN_FRAMES = 24
 
 #: With ``executor=None`` and ``workers=None``, a pool of ``k`` processes
 #: starts only when it would save more than this many seconds over the
-#: frames left after the first two: their time here ``R`` (at the second
-#: frame's pace) times ``1 - 1/k``, less the geometry each worker computes
-#: again (the first frame's time less the second's).  A pool's start and the
+#: frames left after the first two batches (:data:`BATCH_FRAMES`): their
+#: time here ``R`` (at the second batch's pace) times ``1 - 1/k``, less the
+#: geometry each worker computes again (a frame's time in the first batch
+#: less its time in the second).  A pool's start and the
 #: scene sent to each worker cost about this much.
 POOL_MIN_SECONDS = 1.0
+
+#: Views rendered together (:func:`lgraph.render.render_views`): frames
+#: ``0 .. BATCH_FRAMES - 1``, then the next ``BATCH_FRAMES``, and so on.
+#: Their samples are held at once; a batch of views that would exceed the
+#: render's point budget is rendered view by view.
+BATCH_FRAMES = 12
 
 #: Largest frame width in pixels.
 MAX_WIDTH = 8000
@@ -97,11 +109,21 @@ class _Job:
         # unpickling goes through _load, which counts it
         return (_load, (_dumps(attrs.astuple(self, recurse=False)),))
 
-    def render(self, view: Projector, portable: bool = False) -> Any:
-        """Frame for ``view``: a pillow image (raster kinds; PNG bytes, fast to
-        encode, when ``portable``, i.e. sent back from another process), the
-        frame file's bytes (SVG, PDF) or a slim drawing (PDF pages)."""
-        d = self.scene.render(view, **self.render_options)
+    def render(self, views: list[Projector], portable: bool = False) -> list[Any]:
+        """Frames for a batch of ``views``, rendered together: pillow images
+        (raster kinds; PNG bytes, fast to encode, when ``portable``, i.e. sent
+        back from another process), the frame files' bytes (SVG, PDF) or slim
+        drawings (PDF pages)."""
+        try:
+            drawings = render_views(self.scene, views, **self.render_options)
+        except ValueError as e:
+            if "sample points" not in str(e) or len(views) == 1:
+                raise
+            # the batch exceeds the point budget that one view keeps to
+            drawings = [self.scene.render(v, **self.render_options) for v in views]
+        return [self._frame(d, portable) for d in drawings]
+
+    def _frame(self, d: Drawing, portable: bool) -> Any:
         d = Drawing(
             strokes=d.strokes,
             page=self.page,
@@ -144,8 +166,18 @@ def _install(data: bytes) -> None:
     _INSTALLED["job"] = pickle.loads(data)
 
 
-def _render_installed(view: Projector) -> Any:
-    return _INSTALLED["job"].render(view, True)
+def _render_installed(views: list[Projector]) -> list[Any]:
+    return _INSTALLED["job"].render(views, True)
+
+
+def _batches(views: list[Projector]) -> list[list[Projector]]:
+    """The views in batches of :data:`BATCH_FRAMES` (the last may be shorter)."""
+    return [views[i : i + BATCH_FRAMES] for i in range(0, len(views), BATCH_FRAMES)]
+
+
+def _flat(batches: Iterator[list[Any]]) -> Iterator[Any]:
+    for frames in batches:
+        yield from frames
 
 
 def _render_chunk(token: str, data: bytes, views: list[Projector]) -> list[Any]:
@@ -153,11 +185,11 @@ def _render_chunk(token: str, data: bytes, views: list[Projector]) -> list[Any]:
     if job is None:
         _INSTALLED.clear()  # one scene at a time per worker
         job = _INSTALLED[token] = pickle.loads(data)
-    return [job.render(v, True) for v in views]
+    return job.render(views, True)
 
 
-def _render_scattered(job: _Job, view: Projector) -> Any:
-    return job.render(view, True)
+def _render_scattered(job: _Job, views: list[Projector]) -> list[Any]:
+    return job.render(views, True)
 
 
 def _dumps(obj: Any) -> bytes:
@@ -167,35 +199,6 @@ def _dumps(obj: Any) -> bytes:
     except ImportError:
         return pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
     return cloudpickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
-
-
-# -- progress --------------------------------------------------------------------------
-class _Progress:
-    """A one-line progress bar on a terminal; silent otherwise."""
-
-    def __init__(self, total: int, enabled: bool, stream: TextIO | None = None) -> None:
-        self.stream = stream if stream is not None else sys.stderr
-        isatty = getattr(self.stream, "isatty", None)
-        self.on = bool(enabled) and callable(isatty) and bool(isatty())
-        self.total, self.done, self.t0 = total, 0, time.perf_counter()
-
-    def update(self) -> None:
-        self.done += 1
-        if not self.on:
-            return
-        took = time.perf_counter() - self.t0
-        left = took / self.done * (self.total - self.done)
-        n = round(30 * self.done / self.total)
-        self.stream.write(
-            f"\ranimate [{'#' * n}{'.' * (30 - n)}] {self.done}/{self.total} frames, "
-            f"{took:.1f} s, {left:.1f} s left "
-        )
-        self.stream.flush()
-
-    def close(self) -> None:
-        if self.on:
-            self.stream.write("\n")
-            self.stream.flush()
 
 
 # -- scheduling ----------------------------------------------------------------------
@@ -247,49 +250,56 @@ def _local_pool(job: _Job, workers: int, pools: list) -> Any:
     return pool
 
 
-def _pooled(job: _Job, views: list[Projector], workers: int, pools: list) -> Iterator[Any]:
+def _pooled(job: _Job, batches: list[list[Projector]], workers: int, pools: list) -> Iterator:
+    """Frames of ``batches`` rendered in a local pool of ``workers`` processes
+    (here when the scene cannot be sent)."""
     pool = _local_pool(job, workers, pools)
     if pool is None:
-        yield from (job.render(v) for v in views)
-    else:
-        yield from _ordered(lambda v: pool.submit(_render_installed, v), views, 2 * workers)
+        return _flat(job.render(b) for b in batches)
+    return _flat(_ordered(lambda b: pool.submit(_render_installed, b), batches, 2 * workers))
 
 
-def _adaptive(job: _Job, views: list[Projector], workers: int, pools: list) -> Iterator[Any]:
-    """The default for many frames: the first two here (the first fills the
-    geometry cache), then the rest in a pool of ``workers`` processes only if
-    that saves more than :data:`POOL_MIN_SECONDS`.  The frames are the same
-    either way."""
+def _adaptive(job: _Job, batches: list[list[Projector]], workers: int, pools: list) -> Iterator:
+    """The default for many frames: the first two batches here (the first
+    fills the geometry cache), then the rest in a pool of ``workers``
+    processes only if that saves more than :data:`POOL_MIN_SECONDS`.  The
+    frames are the same either way."""
     t0 = time.perf_counter()
-    yield job.render(views[0])
+    yield from job.render(batches[0])
     t1 = time.perf_counter()
-    yield job.render(views[1])
+    if len(batches) < 2:
+        return
+    yield from job.render(batches[1])
     t2 = time.perf_counter()
-    rest = views[2:]
-    first, later = t1 - t0, t2 - t1
-    saved = later * len(rest) * (1 - 1 / workers) - max(0.0, first - later)
-    if saved > POOL_MIN_SECONDS:
+    rest = batches[2:]
+    # per frame: the first batch's (with the geometry) and the second's
+    first, later = (t1 - t0) / len(batches[0]), (t2 - t1) / len(batches[1])
+    n_rest = sum(len(b) for b in rest)
+    saved = later * n_rest * (1 - 1 / workers) - max(0.0, first - later)
+    if rest and saved > POOL_MIN_SECONDS:
         yield from _pooled(job, rest, workers, pools)
     else:
-        yield from (job.render(v) for v in rest)
+        yield from _flat(job.render(b) for b in rest)
 
 
 def _frames(
     job: _Job, views: list[Projector], executor: Any, workers: int | None, pools: list
 ) -> Iterator[Any]:
-    """The rendered frames in order; local pools started are appended to
-    ``pools`` (for the caller to shut down)."""
+    """The rendered frames in order (batches of :data:`BATCH_FRAMES` views
+    rendered together wherever they run); local pools started are appended
+    to ``pools`` (for the caller to shut down)."""
     n = len(views)
+    batches = _batches(views)
     if executor is None:
         if workers is None:
             k = min(os.cpu_count() or 1, 8)
             if n >= max(PARALLEL_MIN_FRAMES, 3) and k > 1:
-                return _adaptive(job, views, k, pools)
+                return _adaptive(job, batches, k, pools)
             workers = 1
-        workers = max(1, min(int(workers), n))
+        workers = max(1, min(int(workers), len(batches)))
         if workers > 1:
-            return _pooled(job, views, workers, pools)
-        return (job.render(v) for v in views)
+            return _pooled(job, batches, workers, pools)
+        return _flat(job.render(b) for b in batches)
     if not isinstance(executor, cf.Executor):
         raise TypeError(
             "animate: executor must be a concurrent.futures.Executor (a process or thread "
@@ -297,12 +307,13 @@ def _frames(
         )
     k = _max_workers(executor)
     if isinstance(executor, cf.ThreadPoolExecutor):  # shares this process's scene
-        return _ordered(lambda v: executor.submit(job.render, v), views, 2 * k)
+        return _flat(_ordered(lambda b: executor.submit(job.render, b), batches, 2 * k))
     if _is_dask(executor):  # the job goes to every worker once
         scattered = executor._client.scatter(job, broadcast=True, hash=False)
-        return _ordered(lambda v: executor.submit(_render_scattered, scattered, v), views, 2 * k)
-    # any other executor: chunks of frames, each with the pickled job; a worker
-    # unpickles a job once and keeps it for the following chunks
+        submit = executor.submit
+        return _flat(_ordered(lambda b: submit(_render_scattered, scattered, b), batches, 2 * k))
+    # any other executor: batches of frames, each with the pickled job; a worker
+    # unpickles a job once and keeps it for the following batches
     try:
         data = _dumps(job)
     except Exception as e:  # noqa: BLE001 - e.g. a lambda without cloudpickle
@@ -311,10 +322,7 @@ def _frames(
             "cloudpickle, or use a ThreadPoolExecutor or executor=None"
         ) from e
     token = uuid.uuid4().hex
-    chunk = max(1, min(16, math.ceil(n / (4 * k))))
-    chunks = [views[i : i + chunk] for i in range(0, n, chunk)]
-    results = _ordered(lambda c: executor.submit(_render_chunk, token, data, c), chunks, 2 * k)
-    return (frame for part in results for frame in part)
+    return _flat(_ordered(lambda b: executor.submit(_render_chunk, token, data, b), batches, 2 * k))
 
 
 # -- the public function --------------------------------------------------------------
@@ -377,14 +385,16 @@ def animate(
         None: in this process, or in a local process pool of ``workers``
         processes.  By default (``workers=None``) a run of at least
         :data:`~lgraph.animation.PARALLEL_MIN_FRAMES` frames renders its
-        first two frames here and hands the rest to a pool of as many
-        processes as CPUs (at most 8) only if, estimated from the times of
-        those two, the pool saves more than
+        first two batches of :data:`~lgraph.animation.BATCH_FRAMES` frames
+        here and hands the rest to a pool of as many processes as CPUs (at
+        most 8) only if, estimated from the times of those two, the pool
+        saves more than
         :data:`~lgraph.animation.POOL_MIN_SECONDS`; the frames are the same
         wherever they are rendered.
     workers : int, optional
         Size of the local pool when ``executor`` is None (1: this process;
-        2 or more: a pool from the first frame on).
+        2 or more: a pool from the first frame on, with at most one process
+        per batch of :data:`~lgraph.animation.BATCH_FRAMES` frames).
     progress : bool
         Show a progress bar when standard error is a terminal.
     frame_format : {"png", "svg", "pdf"}
@@ -447,7 +457,7 @@ def animate(
     gray = isinstance(writer, GifWriter)  # frames in one channel may differ in mode
     job = _Job(scene, window, page, (width, height), kind, options, gray)
 
-    bar = _Progress(len(views), progress)
+    bar = Progress(len(views), progress)
     pools: list = []
     frames = None
     try:

@@ -17,7 +17,7 @@ none.  Labels (:class:`~lgraph.Label`) and point marks
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 import attrs
@@ -274,15 +274,25 @@ class Scene:
 
     def batches(self, node: Node, local_projector: Projector) -> list:
         """The curve batches a node draws (in its local coordinates)."""
+        return self.view_batches(node, [local_projector])[0]
+
+    def view_batches(self, node: Node, local_projectors: Sequence[Projector]) -> list[list]:
+        """The curve batches a node draws in each of several views (its local
+        projectors); a view-independent batch is the same object in every
+        view (the renderer evaluates it once for all of them)."""
+        if node.surface is None:
+            batch = node.item.batch()
+            return [[batch] for _ in local_projectors]
+        boundary = node.surface.boundary() if node.contour else []
         out = []
-        if node.surface is not None:
+        for projector in local_projectors:
+            batches = []
             for i, fam in enumerate(node.families):  # view-independent ones are cached
-                out.extend(family_batches(node, i, fam, local_projector))
+                batches.extend(family_batches(node, i, fam, projector))
             if node.contour:
-                out.extend(Contour().batches(node.surface, local_projector))
-                out.extend(node.surface.boundary())
-        else:
-            out.append(node.item.batch())
+                batches.extend(Contour().batches(node.surface, projector))
+                batches.extend(boundary)
+            out.append(batches)
         return out
 
     def _repr_svg_(self) -> str:

@@ -15,6 +15,7 @@ from PIL import Image
 import lgraph as lg
 from lgraph import animation
 from lgraph.cli import main as cli_main
+from lgraph.progress import Progress
 
 
 @pytest.fixture(scope="module")
@@ -193,14 +194,14 @@ def test_pixel_tolerance_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypat
     views = [lg.ParallelProjector(direction=(0, 0, 1), up=(np.cos(a), np.sin(a), 0))
              for a in (0.0, 0.7, 2.0)]  # fmt: skip
     seen = []
-    render = lg.Scene.render
+    render, render_views = lg.Scene.render, animation.render_views
 
-    def spy(self, view, **kw):
-        d = render(self, view, **kw)
-        seen.append((kw.get("tolerance"), d))
-        return d
+    def spy(scene, views, **kw):  # frames are rendered in batches of views
+        drawings = render_views(scene, views, **kw)
+        seen.extend((kw.get("tolerance"), d) for d in drawings)
+        return drawings
 
-    monkeypatch.setattr(lg.Scene, "render", spy)
+    monkeypatch.setattr(animation, "render_views", spy)
     opts = {"tolerance": "pixel"}
     path = lg.animate(scene, views, tmp_path / "t.gif", width=width, progress=False,
                       workers=1, render_options=opts)  # fmt: skip
@@ -245,12 +246,13 @@ def test_an_interrupt_leaves_no_half_written_file(scene, tmp_path, monkeypatch):
     real = animation._Job.render
     count = []
 
-    def render(self, view):
+    def render(self, views):  # a batch of 2 views a call: the 2nd call is interrupted
         count.append(1)
-        if len(count) == 3:
+        if len(count) == 2:
             raise KeyboardInterrupt
-        return real(self, view)
+        return real(self, views)
 
+    monkeypatch.setattr(animation, "BATCH_FRAMES", 2)
     monkeypatch.setattr(animation._Job, "render", render)
     with pytest.raises(KeyboardInterrupt):
         lg.animate(scene, VIEWS, tmp_path / "t.gif", width=WIDTH, progress=False, workers=1)
@@ -303,20 +305,21 @@ def test_progress_bar_only_on_a_terminal():
 
     tty, pipe = Tty(), io.StringIO()
     for stream in (tty, pipe):
-        bar = animation._Progress(3, True, stream)
+        bar = Progress(3, True, stream)
         for _ in range(3):
             bar.update()
         bar.close()
     assert "3/3 frames" in tty.getvalue() and "\r" in tty.getvalue()
     assert pipe.getvalue() == ""
     quiet = Tty()
-    bar = animation._Progress(3, False, quiet)
+    bar = Progress(3, False, quiet)
     bar.update()
     assert quiet.getvalue() == ""
 
 
 # -- executors --------------------------------------------------------------------------
-def test_executors_give_the_frames_of_a_serial_run(scene, tmp_path):
+def test_executors_give_the_frames_of_a_serial_run(scene, tmp_path, monkeypatch):
+    monkeypatch.setattr(animation, "BATCH_FRAMES", 2)  # 3 batches of views to spread
     views = lg.orbit(elevation=25, frames=6, distance=15)
     serial = lg.animate(scene, views, tmp_path / "s.png", width=WIDTH, progress=False, workers=1)
     want = serial.read_bytes()
@@ -341,12 +344,13 @@ def test_the_default_starts_a_pool_only_for_long_runs(scene, tmp_path, monkeypat
 
     monkeypatch.setattr(animation, "_local_pool", counting)
     monkeypatch.setattr(animation.os, "cpu_count", lambda: 2)
+    monkeypatch.setattr(animation, "BATCH_FRAMES", 4)  # 2 batches here, then 4 more
     serial = lg.animate(scene, views, tmp_path / "s.png", width=WIDTH, progress=False, workers=1)
     # a run whose rest is quicker here than a pool's start (any run, with this bound)
     monkeypatch.setattr(animation, "POOL_MIN_SECONDS", 1e9)
     quick = lg.animate(scene, views, tmp_path / "q.png", width=WIDTH, progress=False)
     assert started == [] and quick.read_bytes() == serial.read_bytes()
-    # long runs (here: any run) go to a pool after the first two frames
+    # long runs (here: any run) go to a pool after the first two batches of frames
     monkeypatch.setattr(animation, "POOL_MIN_SECONDS", -1e9)
     pooled = lg.animate(scene, views, tmp_path / "p.png", width=WIDTH, progress=False)
     assert started == [2] and pooled.read_bytes() == serial.read_bytes()
@@ -437,6 +441,7 @@ def test_a_scene_that_cannot_be_pickled(scene, tmp_path, monkeypatch):
         raise TypeError("cannot pickle 'function' object")
 
     monkeypatch.setattr(animation, "_dumps", fail)
+    monkeypatch.setattr(animation, "BATCH_FRAMES", 1)  # 3 batches: a pool of 2 would help
     views = lg.orbit(frames=3)
     # the default pool falls back to this process, with a warning
     with pytest.warns(RuntimeWarning, match="rendering the frames in this process"):

@@ -35,7 +35,8 @@ def _loads() -> int:
     return animation.JOB_LOADS[0]
 
 
-def test_frames_on_a_local_cluster_equal_a_serial_run(tmp_path):
+def test_frames_on_a_local_cluster_equal_a_serial_run(tmp_path, monkeypatch):
+    monkeypatch.setattr(animation, "BATCH_FRAMES", 2)  # 3 batches of views for 2 workers
     scene = lg.Scene()
     scene.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(5, 6))
     # a lambda in the scene: Dask sends it with cloudpickle

@@ -214,9 +214,9 @@ def test_closed_form_contour_crossings_match_the_iterative_search(name, monkeypa
     solved = []
     closed_form = flips._closed_form
 
-    def counting(s, fl, vis, projector, idx, q, a, b):  # noqa: ANN001, ANN202
+    def counting(s, fl, vis, idx, q, a, b):  # noqa: ANN001, ANN202
         before = a.copy()
-        closed_form(s, fl, vis, projector, idx, q, a, b)
+        closed_form(s, fl, vis, idx, q, a, b)
         solved.append(int((a != before).sum()))
 
     monkeypatch.setattr(flips, "_closed_form", counting)

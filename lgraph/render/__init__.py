@@ -18,8 +18,11 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
+from collections.abc import Sequence
+from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 import attrs
@@ -33,13 +36,14 @@ from ..page import Page, _page
 from ..projectors import CentralProjector, ParallelProjector, Projector
 from ..style import HIDDEN_STYLE, OUTLINE, Style
 from .flips import locate_flips, seed_crossings
-from .occlusion import Occlusion, twin_groups
+from .occlusion import NotBatchable, Occlusion, twin_groups
 from .sampling import Samples, check_points, refine
+from .views import Views
 
 if TYPE_CHECKING:
     from ..scene import Node, Scene
 
-__all__ = ["render", "local_projector"]
+__all__ = ["render", "render_views", "local_projector"]
 
 
 def local_projector(projector: Projector, transform: Transform) -> Projector:
@@ -63,13 +67,19 @@ def local_projector(projector: Projector, transform: Transform) -> Projector:
 
 
 def _strokes(
-    s: Samples, nodes: tuple[Node, ...], hidden_lines: bool, hidden_style: Style, min_extent: float
-) -> list[Stroke]:
-    """Split samples into runs of equal visibility, one stroke per run.
+    s: Samples,
+    nodes: tuple[Node, ...],
+    hidden_lines: bool,
+    hidden_style: Style,
+    min_extent: list[float],
+) -> list[list[Stroke]]:
+    """Split samples into runs of equal visibility, one stroke per run; the
+    strokes of each view.
 
     The last run of a closed curve joins its first when both have one state.
-    Runs whose projection is smaller than ``min_extent`` (degenerate curves
-    such as a parameter circle through a cone's vertex) are dropped."""
+    Runs whose projection is smaller than ``min_extent`` of their view
+    (degenerate curves such as a parameter circle through a cone's vertex)
+    are dropped."""
     n = len(s.t)
     brk = np.flatnonzero((s.cid[1:] != s.cid[:-1]) | (s.hidden[1:] != s.hidden[:-1])) + 1
     starts = np.concatenate([[0], brk])
@@ -90,16 +100,18 @@ def _strokes(
         keep &= ~run_hidden
     joined = partner >= 0
     size = np.where(joined, np.maximum(extent, extent[partner]), extent)
-    keep &= (size > min_extent) & (joined | (ends - starts >= 2))
+    run_view = s.view[run_cid]
+    keep &= (size > np.asarray(min_extent)[run_view]) & (joined | (ends - starts >= 2))
     styles: dict[tuple[int, str], Style] = {}
-    out = []
+    out: list[list[Stroke]] = [[] for _ in min_extent]
     rows = np.flatnonzero(keep)
     starts_l, ends_l, partner_l = starts.tolist(), ends.tolist(), partner.tolist()
-    for r, c, p, hid in zip(
+    for r, c, p, hid, v in zip(
         rows.tolist(),
         run_cid[rows].tolist(),
         s.part[run_cid[rows]].tolist(),
         run_hidden[rows].tolist(),
+        run_view[rows].tolist(),
     ):
         batch, node, _, first_id = s.parts[p]
         names = batch.curve_family
@@ -113,11 +125,11 @@ def _strokes(
             sel = np.concatenate([np.arange(a, b), np.arange(fa + 1, fb)])
         else:
             sel = slice(a, b)
-        out.append(
+        out[v].append(
             Stroke(
                 xy=s.xy[sel],
                 xyz=s.xyz[sel],
-                uv=None if p in s.no_uv else s.uv[sel],
+                uv=None if s.src[p] in s.no_uv else s.uv[sel],
                 visible=not hid,
                 family=family,
                 surface=batch.surface,
@@ -133,7 +145,8 @@ def _classify(s: Samples, vis: Occlusion) -> None:
     if not len(f):
         return
     cause = np.empty(len(f), dtype=np.int64)
-    s.hidden[f] = vis.hidden(s.xyz[f], s.xy[f], *s.owners(f), cause)
+    owner, kind = s.owners(f)
+    s.hidden[f] = vis.hidden(s.xyz[f], s.xy[f], owner, kind, cause, view=s.view[s.cid[f]])
     s.cause[f] = cause
     s.fresh[f] = False
 
@@ -184,6 +197,58 @@ def render(
             "Scene.render: projector must be a ParallelProjector or CentralProjector, "
             f"got {type(projector).__name__}"
         )
+    options = _checked_options(hidden_lines, tolerance, page, hidden_style)
+    return _render(scene, Views([projector]), *options)[0]
+
+
+def render_views(
+    scene: Scene,
+    projectors: Sequence[Projector],
+    *,
+    hidden_lines: bool = False,
+    tolerance: float = tol.CHORD_TOLERANCE,
+    page: Page | tuple[float, float] | None = None,
+    hidden_style: Style | None = None,
+) -> list[Drawing]:
+    """Render ``scene`` from every projector in one pass (the frames of an
+    animation): one drawing per projector, the drawing :func:`render` gives
+    for it (options as there).
+
+    The curves of all views are sampled, tested and split together
+    (:mod:`lgraph.render.views`), so the fixed cost of each pipeline stage is
+    paid once for all of them.  Each view is sampled, tested and split with
+    its own projector and tolerance as when rendered alone; a flip located
+    by K-section may end within its bracket width (``BISECTION_RTOL`` of the
+    curve's span) elsewhere.  Memory grows with the number of views: the
+    budget ``MAX_POINTS`` counts the samples of all views.
+
+    >>> import lgraph as lg
+    >>> scene = lg.Scene()
+    >>> _ = scene.add(lg.Sphere(1), lg.ParameterLines(4, 6))
+    >>> views = lg.orbit(elevation=30, frames=3)
+    >>> [len(d.strokes) for d in render_views(scene, views)]
+    [11, 11, 11]
+    """
+    projectors = list(projectors)
+    for k, p in enumerate(projectors):
+        if not isinstance(p, Projector):
+            raise TypeError(
+                f"render_views: projectors[{k}] must be a ParallelProjector or "
+                f"CentralProjector, got {type(p).__name__}"
+            )
+    if not projectors:
+        return []
+    options = _checked_options(hidden_lines, tolerance, page, hidden_style)
+    try:
+        return _render(scene, Views(projectors), *options)
+    except NotBatchable:  # e.g. an eye inside a sphere's box in some views only
+        return [_render(scene, Views([p]), *options)[0] for p in projectors]
+
+
+def _checked_options(
+    hidden_lines: object, tolerance: object, page: object, hidden_style: object
+) -> tuple[bool, float, Page | None, Style]:
+    """The render options, checked (errors name the bad one)."""
     tolerance = as_number(tolerance)
     if not (
         isinstance(tolerance, (int, float))
@@ -197,7 +262,6 @@ def render(
         )
     if not isinstance(hidden_lines, (bool, np.bool_)):
         raise TypeError(f"Scene.render: hidden_lines must be True or False, got {hidden_lines!r}")
-    hidden_lines = bool(hidden_lines)
     if hidden_style is not None and not isinstance(hidden_style, Style):
         raise TypeError(
             "Scene.render: hidden_style must be a Style (e.g. lg.Style(color='grey', "
@@ -205,28 +269,46 @@ def render(
         )
     page = _checked_page(page)
     hidden_style = HIDDEN_STYLE if hidden_style is None else hidden_style
+    return bool(hidden_lines), tolerance, page, hidden_style
+
+
+def _render(
+    scene: Scene,
+    views: Views,
+    hidden_lines: bool,
+    tolerance: float,
+    page: Page | None,
+    hidden_style: Style,
+) -> list[Drawing]:
+    """The pipeline (module docstring) for every view at once."""
     nodes = scene.nodes
     first = twin_groups(nodes)
+    drawn = [_undrawn(nodes, first, ni) for ni in range(len(nodes))]
+    per_node = [
+        scene.view_batches(node, [local_projector(p, node.transform) for p in views.projectors])
+        for node in drawn
+    ]
     batches = [
-        (ni, b)
-        for ni, node in enumerate(nodes)
-        for b in scene.batches(
-            _undrawn(nodes, first, ni), local_projector(projector, node.transform)
-        )
+        (ni, b, nodes[ni].transform, k)
+        for k in range(views.k)
+        for ni, in_views in enumerate(per_node)
+        for b in in_views[k]
         if len(b)
     ]
-    check_points(tol.INITIAL_SAMPLES * sum(len(b) for _, b in batches))
+    check_points(tol.INITIAL_SAMPLES * sum(len(b[1]) for b in batches))
     if not batches:
-        return _with_marks(scene, [], nodes, projector, hidden_lines, hidden_style, page)
-    s = Samples([(ni, b, nodes[ni].transform) for ni, b in batches], projector)
-    if isinstance(projector, CentralProjector):
-        behind = projector.depth(s.xyz) <= 0
-        if behind.any():
-            node = s.parts[s.part[s.cid[np.argmax(behind)]]].node
-            raise ValueError(
-                f"CentralProjector: part of node {node} ({nodes[node].item!r}) lies at or "
-                "behind the eye; move the eye farther away"
-            )
+        return [
+            _with_marks(scene, [], nodes, p, hidden_lines, hidden_style, page)
+            for p in views.projectors
+        ]
+    s = Samples(batches, views)
+    behind = views.behind(s.xyz, s.view[s.cid])
+    if behind.any():
+        node = s.parts[s.part[s.cid[np.argmax(behind)]]].node
+        raise ValueError(
+            f"CentralProjector: part of node {node} ({nodes[node].item!r}) lies at or "
+            "behind the eye; move the eye farther away"
+        )
     # column by column: numpy reduces an (n, 2) array along an axis slowly
     x, y = s.xy[:, 0], s.xy[:, 1]
     finite = np.isfinite(x) & np.isfinite(y)
@@ -236,17 +318,24 @@ def render(
             f"render: node {node} ({nodes[node].item!r}) produced non-finite points "
             f"in family {batch.family!r}"
         )
-    diag = math.hypot(x.max() - x.min(), y.max() - y.min())
-    abs_tol = tolerance * (diag if diag > 0 else 1.0)
-    vis = Occlusion(nodes, projector)
+    diag = [0.0] * views.k  # of each view's figure (a view without curves: 0)
+    for k, rows in views.groups(s.view[s.cid]):
+        xk, yk = x[rows], y[rows]
+        diag[k] = math.hypot(xk.max() - xk.min(), yk.max() - yk.min())
+    abs_tol = [tolerance * (d if d > 0 else 1.0) for d in diag]
+    vis = Occlusion(nodes, views)
     _classify(s, vis)
-    seed_crossings(s, vis, projector)
-    refine(s, projector, abs_tol, None if hidden_lines else _self_hidden(s, vis))
+    seed_crossings(s, vis)
+    settled = None if hidden_lines else _self_hidden(s, vis)
+    refine(s, abs_tol[0] if views.k == 1 else np.array(abs_tol)[s.view], settled)
     _classify(s, vis)
-    locate_flips(s, vis, projector)
-    strokes = _strokes(s, nodes, hidden_lines, hidden_style, 1e-12 * diag)
+    locate_flips(s, vis)
+    strokes = _strokes(s, nodes, hidden_lines, hidden_style, [1e-12 * d for d in diag])
     _warn_unused_styles(s, nodes)
-    return _with_marks(scene, strokes, nodes, projector, hidden_lines, hidden_style, page, vis)
+    return [
+        _with_marks(scene, strokes[k], nodes, p, hidden_lines, hidden_style, page, vis, k)
+        for k, p in enumerate(views.projectors)
+    ]
 
 
 def _with_marks(
@@ -258,15 +347,19 @@ def _with_marks(
     hidden_style: Style,
     page: Page | tuple[float, float] | None,
     vis: Occlusion | None = None,
+    view: int = 0,
 ) -> Drawing:
-    """The drawing, with the scene's labels and point marks placed (:mod:`lgraph.render.marks`)."""
+    """The drawing, with the scene's labels and point marks placed
+    (:mod:`lgraph.render.marks`; ``vis`` tests points in view ``view``)."""
     labels, points = scene.labels, scene.points
     placed: list = []
     if labels or points:
         from .marks import place_marks
 
-        vis = vis if vis is not None else Occlusion(nodes, projector)
-        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, hidden_style)
+        if vis is None:
+            vis, view = Occlusion(nodes, projector), 0
+        test = SimpleNamespace(hidden=functools.partial(vis.hidden, view=view))
+        placed, dots = place_marks(labels, points, projector, test, hidden_lines, hidden_style)
         strokes = strokes + dots
     return Drawing(strokes=strokes, page=page, labels=placed)
 
@@ -298,5 +391,5 @@ def _warn_unused_styles(s: Samples, nodes: tuple[Node, ...]) -> None:
                 warnings.warn(
                     f"Scene.render: node {k} ({node.item!r}) has styles for {unused}, which it "
                     f"does not draw; it draws {sorted(drawn.get(k, set()))}",
-                    stacklevel=4,
+                    stacklevel=5,
                 )

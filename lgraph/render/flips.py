@@ -70,7 +70,7 @@ class _Flips:
         return (hi - lo) > tol.BISECTION_RTOL * np.maximum(self.span[sel], np.abs(lo))
 
 
-def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
+def _margin_search(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     """Flips caused by an ellipsoid: root finding on its continuous hiding
     margin (:meth:`Occlusion.margin`, see :func:`_root_search`); exact
     ellipses on their own ellipsoid start from the closed-form crossing."""
@@ -86,21 +86,22 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector)
         return
     rows = np.concatenate([vis_end[idx], hid_end[idx]])
     fa, fb = np.split(vis.margin(s.xyz[rows], np.tile(q[idx], 2), np.tile(fl.owner[idx], 2),
-                                 np.tile(fl.kind[idx], 2)), 2)  # fmt: skip
+                                 np.tile(fl.kind[idx], 2), s.view[s.cid[rows]]), 2)  # fmt: skip
     good = (fa <= 0) & (fb > 0)
     idx, fa, fb, q = idx[good], fa[good], fb[good], q[idx][good]
     a = np.where(fl.hlo[idx], fl.hi[idx], fl.lo[idx])  # visible end
     b = np.where(fl.hlo[idx], fl.lo[idx], fl.hi[idx])  # hidden end
     if s.ellipses is not None:
-        _closed_form(s, fl, vis, projector, idx, q, a, b)
+        _closed_form(s, fl, vis, idx, q, a, b)
 
     def margin(xyz: np.ndarray, k: np.ndarray, _uv: np.ndarray) -> np.ndarray:
-        return vis.margin(xyz, q[k], fl.owner[idx[k]], fl.kind[idx[k]])
+        i = idx[k]
+        return vis.margin(xyz, q[k], fl.owner[i], fl.kind[i], s.view[fl.cid[i]])
 
-    _root_search(s, fl, vis, projector, idx, a, b, fa, fb, margin)
+    _root_search(s, fl, vis, idx, a, b, fa, fb, margin)
 
 
-def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
+def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     """Flips on curves of a surface that offers transition functions for its
     own points (:meth:`~lgraph.Surface.visibility_margins`: for a
     surface of revolution, the normal component of the ray and how far the
@@ -116,7 +117,11 @@ def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projec
     vis_end = np.where(fl.hlo[idx0], fl.f[idx0] + 1, fl.f[idx0])
     rows = np.concatenate([vis_end, hid_end])
     ends = vis.own_margins(
-        s.xyz[rows], np.tile(fl.owner[idx0], 2), np.tile(fl.kind[idx0], 2), s.uv[rows]
+        s.xyz[rows],
+        np.tile(fl.owner[idx0], 2),
+        np.tile(fl.kind[idx0], 2),
+        s.uv[rows],
+        view=s.view[s.cid[rows]],
     )  # every function at both ends (brackets that stay open keep their ends)
     for i in range(len(ends)):
         still = fl.open(idx0)
@@ -135,17 +140,17 @@ def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion, projector: Projec
             xyz: np.ndarray, k: np.ndarray, uv: np.ndarray, i: int = i, idx: np.ndarray = idx,
             orient: np.ndarray = orient,
         ) -> np.ndarray:  # fmt: skip
-            m = vis.own_margins(xyz, fl.owner[idx[k]], fl.kind[idx[k]], uv, which=i)
+            j = idx[k]
+            m = vis.own_margins(xyz, fl.owner[j], fl.kind[j], uv, i, s.view[fl.cid[j]])
             return orient[k] * m[0]
 
-        _root_search(s, fl, vis, projector, idx, a, b, orient * ga, orient * gb, margin)
+        _root_search(s, fl, vis, idx, a, b, orient * ga, orient * gb, margin)
 
 
 def _root_search(
     s: Samples,
     fl: _Flips,
     vis: Occlusion,
-    projector: Projector,
     idx: np.ndarray,
     a: np.ndarray,
     b: np.ndarray,
@@ -230,7 +235,7 @@ def _root_search(
     wa, wb = mid - sgn * half, mid + sgn * half
     wide = ~fl.open(idx[done], np.minimum(wa, wb), np.maximum(wa, wb))
     a[done[wide]], b[done[wide]] = wa[wide], wb[wide]
-    ok = _verify(s, fl, vis, projector, idx, a, b)
+    ok = _verify(s, fl, vis, idx, a, b)
     sel, hl = idx[ok], fl.hlo[idx[ok]]
     fl.lo[sel] = np.where(hl, b[ok], a[ok])
     fl.hi[sel] = np.where(hl, a[ok], b[ok])
@@ -240,15 +245,15 @@ def _verify(
     s: Samples,
     fl: _Flips,
     vis: Occlusion,
-    projector: Projector,
     idx: np.ndarray,
     a: np.ndarray,
     b: np.ndarray,
 ) -> np.ndarray:
     """Which brackets ``idx`` are closed with ``a`` visible and ``b`` hidden
     by the full visibility test."""
-    xyz, _, xy = s.evaluate(np.tile(fl.cid[idx], 2), np.concatenate([a, b]), projector)
-    hv = vis.hidden(xyz, xy, np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2))
+    cid = np.tile(fl.cid[idx], 2)
+    xyz, _, xy = s.evaluate(cid, np.concatenate([a, b]), True)
+    hv = vis.hidden(xyz, xy, np.tile(fl.owner[idx], 2), np.tile(fl.kind[idx], 2), view=s.view[cid])
     n = len(idx)
     return ~hv[:n] & hv[n:] & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b))
 
@@ -291,11 +296,22 @@ def _contour_crossings(
     return np.arctan2(R, Q)[:, None] + half[:, None] * np.array([-1.0, 1.0])
 
 
+def _crossings(s: Samples, c: np.ndarray, q: np.ndarray, vis: Occlusion) -> np.ndarray:
+    """:func:`_contour_crossings` of the exact ellipses of curves ``c`` on
+    grouped quadrics ``q``, each curve in its view."""
+    out = np.empty((len(c), 2))
+    for k, rows in s.views.groups(s.view[c]):
+        cr, qr = c[rows], q[rows]
+        out[rows] = _contour_crossings(
+            s.ellipses[cr], vis.q_A[qr], vis.q_b[qr], vis.q_d[qr], s.views.projectors[k], vis.centre
+        )
+    return out
+
+
 def _closed_form(
     s: Samples,
     fl: _Flips,
     vis: Occlusion,
-    projector: Projector,
     idx: np.ndarray,
     q: np.ndarray,
     a: np.ndarray,
@@ -310,10 +326,7 @@ def _closed_form(
     sel = np.flatnonzero(on & np.isfinite(s.ellipses[fl.cid[idx], 0, 0]))
     if not len(sel):
         return
-    qs = q[sel]
-    root = _contour_crossings(
-        s.ellipses[fl.cid[idx[sel]]], vis.q_A[qs], vis.q_b[qs], vis.q_d[qs], projector, vis.centre
-    )
+    root = _crossings(s, fl.cid[idx[sel]], q[sel], vis)
     lo, hi = np.minimum(a[sel], b[sel]), np.maximum(a[sel], b[sel])
     root += 2 * np.pi * np.round(((0.5 * (lo + hi))[:, None] - root) / (2 * np.pi))
     inside = (root > lo[:, None]) & (root < hi[:, None])
@@ -325,7 +338,7 @@ def _closed_form(
     b[sel] = root + toward_b * step
 
 
-def seed_crossings(s: Samples, vis: Occlusion, projector: Projector) -> None:
+def seed_crossings(s: Samples, vis: Occlusion) -> None:
     """Insert samples on both sides of every contour crossing of an exact
     ellipse on its own ellipsoid that lies in a chord without a flip.
 
@@ -344,9 +357,7 @@ def seed_crossings(s: Samples, vis: Occlusion, projector: Projector) -> None:
     c, q = c[vis.q_pd[q]], q[vis.q_pd[q]]
     if not len(c):
         return
-    root = _contour_crossings(
-        s.ellipses[c], vis.q_A[q], vis.q_b[q], vis.q_d[q], projector, vis.centre
-    )
+    root = _crossings(s, c, q, vis)
     t0, span = s.t0[c][:, None], (s.t1 - s.t0)[c][:, None]
     root = t0 + np.mod(root - t0, 2 * np.pi)  # the first turn from t0 on (spans <= 2 pi)
     inside = np.isfinite(root) & (root < t0 + span)
@@ -377,7 +388,7 @@ def seed_crossings(s: Samples, vis: Occlusion, projector: Projector) -> None:
     j, cid, t, step = j[order], cid[order], t[order], step[order]
     tt = np.column_stack([t - step, t + step]).ravel()
     cc = np.repeat(cid, 2)
-    xyz, uv, xy = s.evaluate(cc, tt, projector)
+    xyz, uv, xy = s.evaluate(cc, tt, True)
     merge(s, np.repeat(j - 1, 2), cc, tt, xyz, uv, xy)
 
 
@@ -389,48 +400,56 @@ def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
     return np.where((r > 0) & (r < 1), r, 0.5)
 
 
-def _k_section(s: Samples, fl: _Flips, vis: Occlusion, projector: Projector) -> None:
+def _k_section(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     """Remaining flips: each step splits every bracket into ``K`` parts at once
     (the exactness of bisection in ``1/log2(K)`` of the steps), keeping the
     first sub-bracket whose ends differ.  ``K`` trades the fixed cost of a
     step against the number and cost of the tests: large for a few flips on
     cheap surfaces, 2 (bisection) for many flips on costly ones."""
-    n_open = int(fl.open().sum())
+    still = fl.open()
+    if not still.any():
+        return
     # cost of a step: a fixed part plus the sub-points times the cost of a test;
-    # pick the K with the least cost per bit gained (deterministic: no timing)
+    # pick the K with the least cost per bit gained (deterministic: no timing).
+    # Per view: views rendered together split each bracket as a view alone would
+    view = s.view[fl.cid]
+    n_open = np.bincount(view[still], minlength=s.views.k)
     ks = 2 ** np.arange(1, int(np.log2(tol.SECTIONS)) + 1)
-    per_bit = (vis.cost_per_call + n_open * (ks - 1) * vis.cost_per_point) / np.log2(ks)
-    K = int(ks[np.argmin(per_bit)])
-    frac = np.arange(1, K) / K
+    per_bit = (vis.cost_per_call + n_open[:, None] * (ks - 1) * vis.cost_per_point) / np.log2(ks)
+    K = ks[np.argmin(per_bit, axis=1)][view]  # per bracket
     for _ in range(tol.BISECTION_MAX_STEPS):
         idx = np.nonzero(fl.open())[0]
         if not len(idx):
             break
-        tm = fl.lo[idx, None] + (fl.hi[idx] - fl.lo[idx])[:, None] * frac
-        rep = np.repeat(idx, K - 1)
-        xyz, _, xy = s.evaluate(fl.cid[rep], tm.ravel(), projector)
-        h = vis.hidden(xyz, xy, fl.owner[rep], fl.kind[rep]).reshape(tm.shape)
-        differs = h != fl.hlo[idx, None]
+        k = K[idx]
+        m = k - 1  # sub-points of each bracket
+        rep = np.repeat(idx, m)
+        start = np.cumsum(m) - m
+        j = np.arange(len(rep)) - np.repeat(start, m) + 1  # 1 .. m in each bracket
+        lo = fl.lo[rep]
+        tm = lo + (fl.hi[rep] - lo) * (j / np.repeat(k, m))
+        c = fl.cid[rep]
+        xyz, _, xy = s.evaluate(c, tm, True)
+        h = vis.hidden(xyz, xy, fl.owner[rep], fl.kind[rep], view=s.view[c])
         # first sub-point whose state differs from lo's; none: flip in the last part
-        first = np.where(differs.any(axis=1), differs.argmax(axis=1), K - 1)
-        rows = np.arange(len(idx))
-        has_lo, has_hi = first > 0, first < K - 1
-        fl.lo[idx[has_lo]] = tm[rows[has_lo], first[has_lo] - 1]
-        fl.hi[idx[has_hi]] = tm[rows[has_hi], first[has_hi]]
+        first = np.minimum.reduceat(np.where(h != fl.hlo[rep], j - 1, np.repeat(m, m)), start)
+        has_lo, has_hi = first > 0, first < m
+        fl.lo[idx[has_lo]] = tm[(start + first - 1)[has_lo]]
+        fl.hi[idx[has_hi]] = tm[(start + first)[has_hi]]
 
 
-def locate_flips(s: Samples, vis: Occlusion, projector: Projector) -> None:
+def locate_flips(s: Samples, vis: Occlusion) -> None:
     """Locate every visibility flip between two samples to near machine
     precision (``BISECTION_RTOL`` of the parameter span) and insert both sides."""
     fl = _Flips.find(s)
     if not len(fl):
         return
-    _margin_search(s, fl, vis, projector)
-    _own_margin_search(s, fl, vis, projector)
-    _k_section(s, fl, vis, projector)
+    _margin_search(s, fl, vis)
+    _own_margin_search(s, fl, vis)
+    _k_section(s, fl, vis)
     # both ends of each bracket, in order, right after the flip's first sample
     t = np.column_stack([fl.lo, fl.hi]).ravel()
     c = np.repeat(fl.cid, 2)
-    xyz, uv, xy = s.evaluate(c, t, projector)
+    xyz, uv, xy = s.evaluate(c, t, True)
     hidden = np.column_stack([fl.hlo, ~fl.hlo]).ravel()
     merge(s, np.repeat(fl.f, 2), c, t, xyz, uv, xy, hidden)

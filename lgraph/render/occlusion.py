@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -11,12 +12,13 @@ from ..projectors import CentralProjector, Projector
 from ..surfaces._base import CONTOUR, OFF
 from ..surfaces._quadric_ray import quadric_coefficients_world, quadric_ray_hits
 from ..surfaces.quadrics import Quadric
+from .views import Views, as_views
 
 if TYPE_CHECKING:
     from ..scene import Node
     from ..surfaces._base import Surface
 
-__all__ = ["Occlusion"]
+__all__ = ["NotBatchable", "Occlusion"]
 
 
 def _lies_on(surface: Surface, points: np.ndarray) -> np.ndarray:
@@ -72,6 +74,71 @@ def twin_groups(nodes: tuple[Node, ...]) -> np.ndarray:
     return first
 
 
+class NotBatchable(Exception):
+    """Raised when views cannot be rendered together (the caller renders them
+    one by one): a closed quadric whose projected box exists in some of them
+    only (an eye inside its bounding box)."""
+
+
+def _box(projector: Projector, corners: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """Projected bounding box of world ``corners``; None when some lie at or
+    behind a central projector's eye."""
+    if isinstance(projector, CentralProjector) and not np.all(projector.depth(corners) > 0):
+        return None
+    pc = projector.project(corners)
+    return pc.min(axis=0), pc.max(axis=0)
+
+
+class _BoxGrid:
+    """A uniform grid over the projected boxes ``(x0, y0, x1, y1)`` of the
+    grouped quadrics in one view: the (point, quadric) pairs to test."""
+
+    def __init__(self, box: np.ndarray) -> None:
+        pad = 1e-9 * (np.ptp(box[:, [0, 2]]) + np.ptp(box[:, [1, 3]]) + 1.0)
+        self.box = box + np.array([-pad, -pad, pad, pad])
+        n = len(box)
+        if n == 1:
+            return  # no grid: the box test alone
+        g = max(1, int(2 * np.sqrt(n)))
+        x0, y0 = self.box[:, 0].min(), self.box[:, 1].min()
+        x1, y1 = self.box[:, 2].max(), self.box[:, 3].max()
+        self.grid = (g, x0, y0, max(x1 - x0, 1e-300) / g, max(y1 - y0, 1e-300) / g)
+        cells: list[list[int]] = [[] for _ in range(g * g)]
+        for i, (bx0, by0, bx1, by1) in enumerate(self.box):
+            cx = self._cell(np.array([bx0, bx1]), 1)
+            cy = self._cell(np.array([by0, by1]), 2)
+            for yy in range(cy[0], cy[1] + 1):
+                for xx in range(cx[0], cx[1] + 1):
+                    cells[yy * g + xx].append(i)
+        counts = np.array([len(c) for c in cells])
+        self.cell_start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        self.cell_count = counts
+        self.cell_items = np.array([i for c in cells for i in c], dtype=np.int64)
+
+    def _cell(self, values: np.ndarray, axis: int) -> np.ndarray:
+        g, origin, size = self.grid[0], self.grid[axis], self.grid[axis + 2]
+        return np.clip(((values - origin) / size).astype(np.int64), 0, g - 1)
+
+    def pairs(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(point, quadric) index pairs whose box contains the point."""
+        if len(self.box) == 1:
+            x0, y0, x1, y1 = self.box[0]
+            x, y = xy[:, 0], xy[:, 1]
+            pt = np.flatnonzero((x >= x0) & (x <= x1) & (y >= y0) & (y <= y1))
+            return pt, np.zeros(len(pt), dtype=np.int64)
+        g = self.grid[0]
+        cell = self._cell(xy[:, 1], 2) * g + self._cell(xy[:, 0], 1)
+        counts = self.cell_count[cell]
+        pt = np.repeat(np.arange(len(xy)), counts)
+        first = np.repeat(self.cell_start[cell] + counts - np.cumsum(counts), counts)
+        q = self.cell_items[first + np.arange(len(pt))]
+        box = self.box[q]
+        p = xy[pt]
+        inside = (p[:, 0] >= box[:, 0]) & (p[:, 0] <= box[:, 2])
+        inside &= (p[:, 1] >= box[:, 1]) & (p[:, 1] <= box[:, 3])
+        return pt[inside], q[inside]
+
+
 class Occlusion:
     """Tests world points against every hiding surface of the scene.
 
@@ -94,10 +161,10 @@ class Occlusion:
     random half of the points by round-off.
     """
 
-    def __init__(self, nodes: tuple[Node, ...], projector: Projector) -> None:
-        self.projector = projector
-        self.items = []  # (node index, surface, inverse transform, box) asked one by one
-        quads = []  # (node index, box, A_w, b_w, d_w, eps) tested together
+    def __init__(self, nodes: tuple[Node, ...], projector: Projector | Views) -> None:
+        self.views = views = as_views(projector)
+        self.items = []  # (node index, surface, inverse transform, boxes) asked one by one
+        quads = []  # (node index, boxes, A_w, b_w, d_w, eps) tested together
         hiding = [(j, n) for j, n in enumerate(nodes) if n.surface is not None and n.hides]
         world = {}
         for j, node in hiding:
@@ -114,18 +181,18 @@ class Occlusion:
             surf = node.surface
             inv = node.transform.inverse()
             wc = world[j]
-            box = None
-            if not isinstance(projector, CentralProjector) or np.all(projector.depth(wc) > 0):
-                pc = projector.project(wc)
-                box = (pc.min(axis=0), pc.max(axis=0))
-            if isinstance(surf, Quadric) and surf.closed and box is not None:
+            boxes = [_box(p, wc) for p in views.projectors]  # per view; None: none
+            grouped = [box is not None for box in boxes]
+            if isinstance(surf, Quadric) and surf.closed and any(grouped) and not all(grouped):
+                raise NotBatchable("a closed quadric has a box in some views only")
+            if isinstance(surf, Quadric) and surf.closed and all(grouped):
                 A, b, d = quadric_coefficients_world(
                     *surf.coefficients, inv.matrix, inv.offset + inv.matrix @ self.centre
                 )
                 size = float(np.linalg.norm(wc.max(axis=0) - wc.min(axis=0)))
-                quads.append((j, box, A, b, d, tol.SELF_HIT_RTOL * size))
+                quads.append((j, boxes, A, b, d, tol.SELF_HIT_RTOL * size))
             else:
-                self.items.append((j, surf, inv, box))
+                self.items.append((j, surf, inv, boxes))
         #: per asked surface, the nodes holding the same surface in the same place
         #: (their points are its own points: the tie rule for surfaces that have
         #: no implicit equation, such as a ParametricSurface added twice)
@@ -142,55 +209,33 @@ class Occlusion:
         if not quads:
             return
         self.q_node = np.array([q[0] for q in quads])
-        self.q_box = np.array([[*q[1][0], *q[1][1]] for q in quads])  # x0 y0 x1 y1
         self.q_A = np.array([q[2] for q in quads])
         self.q_b = np.array([q[3] for q in quads])
         self.q_d = np.array([q[4] for q in quads])
         self.q_eps = np.array([q[5] for q in quads])
         # ellipsoids (A positive definite): a continuous hiding margin exists
         self.q_pd = np.all(np.linalg.eigvalsh(self.q_A) > 0, axis=1)
-        pad = 1e-9 * (np.ptp(self.q_box[:, [0, 2]]) + np.ptp(self.q_box[:, [1, 3]]) + 1.0)
-        self.q_box += np.array([-pad, -pad, pad, pad])
-        if self.nq == 1:
-            return  # no grid: the box test alone
-        g = max(1, int(2 * np.sqrt(self.nq)))
-        x0, y0 = self.q_box[:, 0].min(), self.q_box[:, 1].min()
-        x1, y1 = self.q_box[:, 2].max(), self.q_box[:, 3].max()
-        self.grid = (g, x0, y0, max(x1 - x0, 1e-300) / g, max(y1 - y0, 1e-300) / g)
-        cells: list[list[int]] = [[] for _ in range(g * g)]
-        for i, (bx0, by0, bx1, by1) in enumerate(self.q_box):
-            cx = self._cell(np.array([bx0, bx1]), 1)
-            cy = self._cell(np.array([by0, by1]), 2)
-            for yy in range(cy[0], cy[1] + 1):
-                for xx in range(cx[0], cx[1] + 1):
-                    cells[yy * g + xx].append(i)
-        counts = np.array([len(c) for c in cells])
-        self.cell_start = np.concatenate([[0], np.cumsum(counts)[:-1]])
-        self.cell_count = counts
-        self.cell_items = np.array([i for c in cells for i in c], dtype=np.int64)
+        #: per view, the quadrics' projected boxes and the grid over them
+        self.grids = [
+            _BoxGrid(np.array([[*q[1][k][0], *q[1][k][1]] for q in quads]))
+            for k in range(self.views.k)
+        ]
 
-    def _cell(self, values: np.ndarray, axis: int) -> np.ndarray:
-        g, origin, size = self.grid[0], self.grid[axis], self.grid[axis + 2]
-        return np.clip(((values - origin) / size).astype(np.int64), 0, g - 1)
-
-    def _quadric_pairs(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(point, quadric) index pairs whose projected box contains the point."""
-        if self.nq == 1:
-            x0, y0, x1, y1 = self.q_box[0]
-            x, y = xy[:, 0], xy[:, 1]
-            pt = np.flatnonzero((x >= x0) & (x <= x1) & (y >= y0) & (y <= y1))
-            return pt, np.zeros(len(pt), dtype=np.int64)
-        g = self.grid[0]
-        cell = self._cell(xy[:, 1], 2) * g + self._cell(xy[:, 0], 1)
-        counts = self.cell_count[cell]
-        pt = np.repeat(np.arange(len(xy)), counts)
-        first = np.repeat(self.cell_start[cell] + counts - np.cumsum(counts), counts)
-        q = self.cell_items[first + np.arange(len(pt))]
-        box = self.q_box[q]
-        p = xy[pt]
-        inside = (p[:, 0] >= box[:, 0]) & (p[:, 0] <= box[:, 2])
-        inside &= (p[:, 1] >= box[:, 1]) & (p[:, 1] <= box[:, 3])
-        return pt[inside], q[inside]
+    def _quadric_pairs(
+        self, xy: np.ndarray, view: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(point, quadric) index pairs whose projected box (in the point's
+        view) contains the point."""
+        if self.views.k == 1 or view is None:
+            return self.grids[0].pairs(xy)
+        pts, qs = [], []
+        for k, rows in self.views.groups(view):
+            pt, q = self.grids[k].pairs(xy[rows])
+            pts.append(np.arange(len(xy))[rows][pt])
+            qs.append(q)
+        pt, q = np.concatenate(pts), np.concatenate(qs)
+        order = np.argsort(pt, kind="stable")  # by point, as for one view
+        return pt[order], q[order]
 
     def hidden(
         self,
@@ -199,15 +244,19 @@ class Occlusion:
         owner: np.ndarray,
         kind: np.ndarray,
         cause: np.ndarray | None = None,
+        view: np.ndarray | None = None,
     ) -> np.ndarray:
-        """Hidden flags; ``cause`` (optional output) receives, for points hidden
+        """Hidden flags of points ``xyz`` (projected to ``xy``, each in its
+        ``view``); ``cause`` (optional output) receives, for points hidden
         by a grouped quadric, that quadric's index (else -1)."""
-        dirs, smax = self.projector.rays(xyz)
+        if isinstance(view, (int, np.integer)):
+            view = None if self.views.k == 1 else np.full(len(xyz), view)
+        dirs, smax = self.views.rays(xyz, view)
         out = np.zeros(len(xyz), dtype=bool)
         if cause is not None:
             cause[:] = -1
         if self.nq:
-            pt, q = self._quadric_pairs(xy)
+            pt, q = self._quadric_pairs(xy, view)
             if len(pt) == len(xyz) and self.nq == 1:  # one quadric, every point in its box
                 o, v, sm, ow, kd = xyz - self.centre, dirs, smax, owner, kind
             else:
@@ -221,20 +270,7 @@ class Occlusion:
                 cause[pt[h]] = q[h]
         if not self.items:
             return out
-        # other surfaces: cull by the projected bounding box; points sorted by
-        # x, so each box selects a contiguous slab that is then filtered by y
-        order = np.argsort(xy[:, 0], kind="stable")
-        xs = xy[order, 0]
-        for j, surf, inv, box in self.items:
-            if box is None:
-                idx = np.arange(len(xyz))
-            else:
-                (x0, y0), (x1, y1) = box
-                pad = 1e-9 * (max(x1 - x0, y1 - y0) + 1.0)
-                a, b = np.searchsorted(xs, [x0 - pad, x1 + pad])
-                idx = order[a:b]
-                y = xy[idx, 1]
-                idx = idx[(y >= y0 - pad) & (y <= y1 + pad)]
+        for j, surf, inv, idx in self._in_boxes(xy, view):
             if not len(idx):
                 continue
             mine = np.isin(owner[idx], self.twins[j])
@@ -248,6 +284,37 @@ class Occlusion:
             out[idx] |= surf.hits(o, v, smax[idx], own)
         return out
 
+    def _in_boxes(self, xy: np.ndarray, view: np.ndarray | None) -> Iterator[tuple]:
+        """``(node, surface, inverse transform, rows)`` of every surface asked
+        one by one, with the rows of the points inside its projected box (in
+        their view)."""
+        if self.views.k == 1 or view is None:
+            # points sorted by x: each box selects a contiguous slab, then filtered by y
+            order = np.argsort(xy[:, 0], kind="stable")
+            xs = xy[order, 0]
+            for j, surf, inv, (box,) in self.items:
+                if box is None:
+                    yield j, surf, inv, np.arange(len(xy))
+                    continue
+                (x0, y0), (x1, y1) = box
+                pad = 1e-9 * (max(x1 - x0, y1 - y0) + 1.0)
+                a, b = np.searchsorted(xs, [x0 - pad, x1 + pad])
+                idx = order[a:b]
+                y = xy[idx, 1]
+                yield j, surf, inv, idx[(y >= y0 - pad) & (y <= y1 + pad)]
+            return
+        x, y = xy[:, 0], xy[:, 1]
+        for j, surf, inv, boxes in self.items:
+            lim = np.array(
+                [(-np.inf, -np.inf, np.inf, np.inf) if b is None else (*b[0], *b[1]) for b in boxes]
+            )
+            pad = 1e-9 * (np.maximum(lim[:, 2] - lim[:, 0], lim[:, 3] - lim[:, 1]) + 1.0)
+            pad = np.where(np.isfinite(pad), pad, 0.0)
+            lim += np.column_stack([-pad, -pad, pad, pad])
+            b = lim[view]
+            inside = (x >= b[:, 0]) & (x <= b[:, 2]) & (y >= b[:, 1]) & (y <= b[:, 3])
+            yield j, surf, inv, np.flatnonzero(inside)
+
     def own_margins(
         self,
         xyz: np.ndarray,
@@ -255,16 +322,18 @@ class Occlusion:
         kind: np.ndarray,
         uv: np.ndarray | None = None,
         which: int | None = None,
+        view: np.ndarray | None = None,
     ) -> np.ndarray:
         """For points on a surface asked one by one, that surface's transition
         functions (:meth:`~lgraph.Surface.visibility_margins`), ``(k,
         n)`` padded with NaN; ``k = 0`` when no surface has any.  They speak
         for the point's own surface only, not for the rest of the scene.
         ``uv``: the points' parameters on their own surface, when known;
-        ``which``: only that function of each surface (one row)."""
+        ``which``: only that function of each surface (one row); ``view``: the
+        points' views."""
         parts = []
         if len(xyz) and self.items:
-            dirs, smax = self.projector.rays(xyz)
+            dirs, smax = self.views.rays(xyz, view)
             for j, surf, inv, _ in self.items:
                 idx = np.flatnonzero(np.isin(owner, self.twins[j]) & (kind != OFF))
                 if not len(idx):
@@ -314,7 +383,12 @@ class Occlusion:
         return self.q_A[q], self.q_b[q], self.q_d[q], self.q_eps[q]
 
     def margin(
-        self, xyz: np.ndarray, q: np.ndarray, owner: np.ndarray, kind: np.ndarray
+        self,
+        xyz: np.ndarray,
+        q: np.ndarray,
+        owner: np.ndarray,
+        kind: np.ndarray,
+        view: np.ndarray | None = None,
     ) -> np.ndarray:
         """Continuous function, positive exactly where ellipsoid ``q`` hides the point.
 
@@ -323,7 +397,7 @@ class Occlusion:
         iff it is inside (``qc < 0``) or the ray meets the ellipsoid ahead
         (``disc >= 0`` and ``qb < 0``).  Used to locate flips by root finding.
         """
-        dirs, _ = self.projector.rays(xyz)
+        dirs, _ = self.views.rays(xyz, view)
         xyz = xyz - self.centre
         coef = self._coefficients(q)  # per point, or one quadric's (broadcast)
         A, b, d, _ = coef

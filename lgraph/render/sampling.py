@@ -18,6 +18,7 @@ from ..families import cache as family_cache
 from ..geometry.transforms import Transform
 from ..projectors import Projector
 from ..surfaces._base import OFF
+from .views import Views, as_views
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
@@ -44,24 +45,35 @@ class Samples:
     (grouped quadric hiding it, or -1) and ``fresh`` (not yet tested).
     """
 
-    def __init__(
-        self, batches: list[tuple[int, CurveBatch, Transform]], projector: Projector
-    ) -> None:
-        sizes = [len(b) for _, b, _ in batches]
+    def __init__(self, batches: list[tuple], projector: Projector | Views) -> None:
+        # batches: (node, batch, transform) or (node, batch, transform, view)
+        sizes = [len(b[1]) for b in batches]
         firsts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int).tolist()
-        self.parts = [Part(b, node, tr, f) for (node, b, tr), f in zip(batches, firsts)]
+        self.parts = [Part(b[1], b[0], b[2], f) for b, f in zip(batches, firsts)]
+        self.views = as_views(projector)
+        #: per curve: its view (index into ``views.projectors``)
+        self.view = np.repeat([b[3] if len(b) > 3 else 0 for b in batches], sizes)
+        # a batch drawn in several views (the same node's cached family) is one
+        # source: evaluated once for all its copies
+        src: dict[tuple[int, int], int] = {}
+        self.src = np.array(
+            [src.setdefault((p.node, id(p.batch)), i) for i, p in enumerate(self.parts)]
+        )
         self.part = np.repeat(np.arange(len(batches)), sizes)
-        self.t0 = np.concatenate([b.t0 for _, b, _ in batches])
-        self.t1 = np.concatenate([b.t1 for _, b, _ in batches])
-        self.closed = np.concatenate([b.closed for _, b, _ in batches])
-        self.owner = np.repeat([-1 if b.surface is None else n for n, b, _ in batches], sizes)
-        self.kind = np.repeat([OFF if b.surface is None else b.own for _, b, _ in batches], sizes)
+        #: per curve: its source part, and its index within that part's batch
+        self.csrc = self.src[self.part]
+        self.lcid = np.arange(sum(sizes)) - np.repeat(firsts, sizes)
+        self.t0 = np.concatenate([b[1].t0 for b in batches])
+        self.t1 = np.concatenate([b[1].t1 for b in batches])
+        self.closed = np.concatenate([b[1].closed for b in batches])
+        self.owner = np.repeat([-1 if b[1].surface is None else b[0] for b in batches], sizes)
+        self.kind = np.repeat([OFF if b[1].surface is None else b[1].own for b in batches], sizes)
         self.kind = self.kind.astype(np.int8)
         #: per curve, its exact ellipse in world coordinates (NaN: none), or None
         self.ellipses = None
-        if any(b.ellipses is not None for _, b, _ in batches):
+        if any(b[1].ellipses is not None for b in batches):
             self.ellipses = np.full((len(self.t0), 3, 3), np.nan)
-            for (_, b, tr), first in zip(batches, firsts):
+            for (_, b, tr, *_), first in zip(batches, firsts):
                 if b.ellipses is not None:
                     e = b.ellipses @ tr.matrix.T  # centre and both axes as vectors
                     e[:, 0] += tr.offset  # the centre moves with the offset too
@@ -71,50 +83,55 @@ class Samples:
         self.cid = np.repeat(np.arange(len(self.t0)), k)
         frac = np.linspace(0.0, 1.0, k)
         self.t = (self.t0[:, None] + (self.t1 - self.t0)[:, None] * frac).ravel()
-        self.no_uv: set[int] = set()  # parts whose curves have no parameters
+        self.no_uv: set[int] = set()  # sources whose curves have no parameters
         n = len(self.t)
         self.xyz, self.uv = np.empty((n, 3)), np.full((n, 2), np.nan)
-        for p, ((_, b, tr), first) in enumerate(zip(batches, firsts)):
+        for p, ((_, b, tr, *_), first) in enumerate(zip(batches, firsts)):
             rows = slice(first * k, (first + len(b)) * k)
+            if self.src[p] != p:  # the same batch in an earlier view: its samples
+                src = slice(firsts[self.src[p]] * k, (firsts[self.src[p]] + len(b)) * k)
+                self.xyz[rows], self.uv[rows] = self.xyz[src], self.uv[src]
+                continue
             x, u = family_cache.derived(b, ("initial samples", k), _Initial(b, self.t[rows], k))
             self.xyz[rows] = x if tr.is_identity else tr.apply(x)
             if u is None:
-                self.no_uv.add(p)
+                self.no_uv.add(int(self.src[p]))
             else:
                 self.uv[rows] = u
-        self.xy = projector.project(self.xyz)
+        self.xy = self.views.project(self.xyz, self.view[self.cid])
         self.hidden = np.zeros(n, dtype=bool)
         self.cause = np.full(n, -1, dtype=np.int64)
         self.fresh = np.ones(n, dtype=bool)
 
     def evaluate(
-        self, cid: np.ndarray, t: np.ndarray, projector: Projector | None
+        self, cid: np.ndarray, t: np.ndarray, project: object
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-        """World points, parameters (NaN where a curve has none) and projections
-        (None without a projector) of curves ``cid`` at ``t``; one call per
-        batch involved."""
+        """World points, parameters (NaN where a curve has none) and, unless
+        ``project`` is None, projections (each curve in its view) of curves
+        ``cid`` at ``t``; one call per batch involved (a batch drawn in
+        several views is called once)."""
         n = len(t)
-        part = self.part[cid]
+        src = self.csrc[cid]
         xyz, uv = np.empty((n, 3)), np.full((n, 2), np.nan)
         if not n:
-            return xyz, uv, None if projector is None else np.empty((n, 2))
-        if len(self.parts) == 1 or not (part != part[0]).any():
-            order, ps, cuts = None, part, np.empty(0, dtype=int)  # one batch
+            return xyz, uv, None if project is None else np.empty((n, 2))
+        if len(self.parts) == 1 or not (src != src[0]).any():
+            order, ps, cuts = None, src, np.empty(0, dtype=int)  # one batch
         else:
-            order = None if np.all(part[1:] >= part[:-1]) else np.argsort(part, kind="stable")
-            ps = part if order is None else part[order]
+            order = None if np.all(src[1:] >= src[:-1]) else np.argsort(src, kind="stable")
+            ps = src if order is None else src[order]
             cuts = np.flatnonzero(ps[1:] != ps[:-1]) + 1
         for lo, hi in zip([0, *cuts.tolist()], [*cuts.tolist(), n]):
             rows = slice(lo, hi) if order is None else order[lo:hi]
-            batch, _, transform, first = self.parts[ps[lo]]
-            x, u = batch.evaluate(cid[rows] - first, t[rows])
+            batch, _, transform, _ = self.parts[ps[lo]]
+            x, u = batch.evaluate(self.lcid[cid[rows]], t[rows])
             x = np.asarray(x, dtype=float).reshape(-1, 3)
             xyz[rows] = x if transform.is_identity else transform.apply(x)
             if u is None:
                 self.no_uv.add(int(ps[lo]))
             else:
                 uv[rows] = np.asarray(u, float).reshape(-1, 2)
-        return xyz, uv, None if projector is None else projector.project(xyz)
+        return xyz, uv, None if project is None else self.views.project(xyz, self.view[cid])
 
     def owners(self, rows: np.ndarray | slice) -> tuple[np.ndarray, np.ndarray]:
         """Owner nodes and ownership codes of samples ``rows``."""
@@ -185,10 +202,9 @@ def merge(s: Samples, after: np.ndarray, cid, t, xyz, uv, xy, hidden=None) -> np
     return new
 
 
-def refine(
-    s: Samples, projector: Projector, abs_tol: float, settled: np.ndarray | None = None
-) -> None:
-    """Refine until every chord's midpoint is within ``abs_tol`` of the curve.
+def refine(s: Samples, abs_tol: float | np.ndarray, settled: np.ndarray | None = None) -> None:
+    """Refine until every chord's midpoint is within ``abs_tol`` of the curve
+    (a length, or one per curve: each view has its own).
 
     Chords between two ``settled`` samples (a mask) are left as they are.
 
@@ -205,9 +221,9 @@ def refine(
     if settled is not None:
         check &= ~(settled[1:] & settled[:-1])
     dev = _predicted_deviation(s.xy, s.cid, s.t)
-    split = np.flatnonzero(check & (dev > abs_tol))
+    split = np.flatnonzero(check & (dev > _at(abs_tol, s.cid[:-1])))
     if len(split):
-        new = _split(s, projector, split, dev[split], abs_tol)
+        new = _split(s, split, dev[split], abs_tol)
         flag = np.ones(len(new), dtype=bool)  # sub-chords of checked chords
         flag[~new] = np.append(check, False)
         check = flag[:-1]
@@ -218,16 +234,16 @@ def refine(
         if not len(idx):
             return
         tm = 0.5 * (s.t[idx] + s.t[idx + 1])
-        _, _, xy = s.evaluate(s.cid[idx], tm, projector)
+        _, _, xy = s.evaluate(s.cid[idx], tm, True)
         dev = seg_distance(xy, s.xy[idx], s.xy[idx + 1])
-        split = ~(dev <= abs_tol)  # also splits where dev is NaN
+        split = ~(dev <= _at(abs_tol, s.cid[idx]))  # also splits where dev is NaN
         if not split.any():
             return
-        new = _split(s, projector, idx[split], dev[split], abs_tol)
+        new = _split(s, idx[split], dev[split], abs_tol)
         check = new[:-1] | new[1:]
 
 
-def check_points(n: int, abs_tol: float | None = None) -> None:
+def check_points(n: int, refining: bool = False) -> None:
     """Refuse, before any work, a sampling that would hold more than
     ``MAX_POINTS`` points (the render's memory budget).
 
@@ -240,7 +256,7 @@ def check_points(n: int, abs_tol: float | None = None) -> None:
     if n > tol.MAX_POINTS:
         why = (
             "raise tolerance or draw fewer lines"
-            if abs_tol is not None
+            if refining
             else "draw fewer lines (lower the counts of the families)"
         )
         raise ValueError(
@@ -269,20 +285,23 @@ def _predicted_deviation(xy: np.ndarray, cid: np.ndarray, t: np.ndarray) -> np.n
     return dev
 
 
-def _split(
-    s: Samples, projector: Projector, idx: np.ndarray, dev: np.ndarray, abs_tol: float
-) -> np.ndarray:
+def _at(abs_tol: float | np.ndarray, cid: np.ndarray) -> float | np.ndarray:
+    """The chord tolerance for curves ``cid``."""
+    return abs_tol if np.ndim(abs_tol) == 0 else abs_tol[cid]
+
+
+def _split(s: Samples, idx: np.ndarray, dev: np.ndarray, abs_tol: float | np.ndarray) -> np.ndarray:
     """Split chords ``idx`` (deviation ``dev``) into equal parts in ``t``;
     returns the mask of new samples."""
     with np.errstate(invalid="ignore"):
-        m = np.ceil(1.05 * np.sqrt(dev / abs_tol))
+        m = np.ceil(1.05 * np.sqrt(dev / _at(abs_tol, s.cid[idx])))
     m = np.clip(np.nan_to_num(m, nan=2.0), 2, tol.MAX_SPLIT).astype(np.int64)
-    check_points(len(s.t) + int(m.sum() - len(m)), abs_tol=abs_tol)
+    check_points(len(s.t) + int(m.sum() - len(m)), refining=True)
     after = np.repeat(idx, m - 1)
     j = np.arange(len(after)) - np.repeat(np.cumsum(m - 1) - (m - 1), m - 1) + 1
     frac = j / np.repeat(m, m - 1)
     t = s.t[after] + frac * (s.t[after + 1] - s.t[after])
     c = s.cid[after]
-    xyz, uv, xy = s.evaluate(c, t, projector)
+    xyz, uv, xy = s.evaluate(c, t, True)
     new = merge(s, after, c, t, xyz, uv, xy)
     return new

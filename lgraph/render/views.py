@@ -1,0 +1,96 @@
+"""The views of one render pass: one projector, or several rendered together.
+
+:func:`lgraph.render.render_views` renders a scene from many views (the
+frames of an animation) in one pass: the curves of every view are samples
+of one set of flat arrays (``Samples`` in :mod:`lgraph.render.sampling`), so
+each stage of the pipeline costs a handful of numpy calls for all views
+instead of for each.  Every sample knows its view; the projector's
+operations are applied per view, each view's rows with that view's own
+projector (the same arithmetic as a render of that view alone).
+
+With one projector every operation is that projector's own call, so a
+single render is unchanged.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+
+import numpy as np
+
+from ..projectors import CentralProjector, Projector
+
+__all__ = ["Views", "as_views"]
+
+
+class Views:
+    """Projectors of the views rendered together, applied to rows of points
+    that each carry a view index (``view``: an int array, or None for all
+    rows in view 0)."""
+
+    def __init__(self, projectors: Sequence[Projector]) -> None:
+        self.projectors = tuple(projectors)
+        if not self.projectors:
+            raise ValueError("render_views: no views given")
+        self.k = len(self.projectors)
+        self.central = np.array([isinstance(p, CentralProjector) for p in self.projectors])
+
+    def groups(self, view: np.ndarray | int | None) -> Iterator[tuple[int, np.ndarray | slice]]:
+        """``(k, rows)`` for every view ``k`` present among the rows (``view``:
+        one per row, or one for all)."""
+        if isinstance(view, (int, np.integer)):
+            yield int(view), slice(None)
+            return
+        if self.k == 1 or view is None:
+            yield 0, slice(None)
+            return
+        n = len(view)
+        if not n:
+            return
+        if np.all(view[1:] >= view[:-1]):  # samples come sorted by view
+            order, vs = None, view
+        else:
+            order = np.argsort(view, kind="stable")
+            vs = view[order]
+        cuts = (np.flatnonzero(vs[1:] != vs[:-1]) + 1).tolist()
+        for lo, hi in zip([0, *cuts], [*cuts, n]):
+            yield int(vs[lo]), slice(lo, hi) if order is None else order[lo:hi]
+
+    def project(self, xyz: np.ndarray, view: np.ndarray | None = None) -> np.ndarray:
+        """Projections ``(n, 2)`` of points ``xyz``, each in its view."""
+        if self.k == 1 or view is None:
+            return self.projectors[0].project(xyz)
+        if isinstance(view, (int, np.integer)):
+            return self.projectors[view].project(xyz)
+        out = np.empty((len(xyz), 2))
+        for k, rows in self.groups(view):
+            out[rows] = self.projectors[k].project(xyz[rows])
+        return out
+
+    def rays(
+        self, xyz: np.ndarray, view: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Unit directions toward the viewer and ray lengths (see
+        :meth:`lgraph.Projector.rays`), each point in its view."""
+        if self.k == 1 or view is None:
+            return self.projectors[0].rays(xyz)
+        if isinstance(view, (int, np.integer)):
+            return self.projectors[view].rays(xyz)
+        dirs, smax = np.empty((len(xyz), 3)), np.empty(len(xyz))
+        for k, rows in self.groups(view):
+            dirs[rows], smax[rows] = self.projectors[k].rays(xyz[rows])
+        return dirs, smax
+
+    def behind(self, xyz: np.ndarray, view: np.ndarray | None = None) -> np.ndarray:
+        """Which points lie at or behind the eye of their (central) view."""
+        out = np.zeros(len(xyz), dtype=bool)
+        for k, rows in self.groups(view):
+            p = self.projectors[k]
+            if isinstance(p, CentralProjector):
+                out[rows] = p.depth(xyz[rows]) <= 0
+        return out
+
+
+def as_views(projector: Projector | Views) -> Views:
+    """``projector`` as :class:`Views` (one view), or the views themselves."""
+    return projector if isinstance(projector, Views) else Views([projector])
