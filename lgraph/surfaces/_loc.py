@@ -92,6 +92,7 @@ cones with the same vertex are the third family of the system).
 from __future__ import annotations
 
 import functools
+import math
 from typing import Any
 
 import numpy as np
@@ -130,16 +131,14 @@ def ellipsoid_frame(axes: np.ndarray) -> tuple[np.ndarray, float, float, float]:
 def ellipsoid_point(p: float, q: float, r: float, phi: Any, theta: Any) -> np.ndarray:
     """Sorted-frame point with ellipsoidal angles ``phi, theta`` (module docstring)."""
     phi, theta = np.broadcast_arrays(np.asarray(phi, float), np.asarray(theta, float))
-    k1 = np.sqrt(np.maximum((q - p) + (r - q) * np.cos(theta) ** 2, 0.0) / (r - p))
-    k3 = np.sqrt(np.maximum((r - p) - (q - p) * np.sin(phi) ** 2, 0.0) / (r - p))
-    return np.stack(
-        [
-            np.sqrt(p) * np.sin(phi) * k1,
-            np.sqrt(q) * np.cos(phi) * np.cos(theta),
-            np.sqrt(r) * np.sin(theta) * k3,
-        ],
-        axis=-1,
-    )
+    s_phi, c_phi, s_th, c_th = np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta)
+    k1 = np.sqrt(np.maximum((q - p) + (r - q) * c_th**2, 0.0) / (r - p))
+    k3 = np.sqrt(np.maximum((r - p) - (q - p) * s_phi**2, 0.0) / (r - p))
+    out = np.empty((*phi.shape, 3))
+    out[..., 0] = math.sqrt(p) * s_phi * k1
+    out[..., 1] = math.sqrt(q) * c_phi * c_th
+    out[..., 2] = math.sqrt(r) * s_th * k3
+    return out
 
 
 def ellipsoid_umbilics(axes: np.ndarray) -> np.ndarray:
