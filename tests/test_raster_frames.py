@@ -1,10 +1,12 @@
 """Cheaper raster frames, the same pixels: ``render_image`` (strokes drawn on
 the rows that hold ink only, coordinates handed to pillow as truncated float32
-arrays, only the inked columns box-reduced) against the straightforward way in
+arrays, only the inked columns box-reduced) and the GIF writer (only the box
+that changed since the last grey frame) against the straightforward way in
 ``tests/raster_reference.py``, pixel for pixel."""
 
 from __future__ import annotations
 
+import struct
 import warnings
 
 import numpy as np
@@ -15,6 +17,7 @@ from PIL import Image, ImageDraw
 import lgraph as lg
 import lgraph.backends.png as png
 from lgraph.drawing import Drawing, Page, Stroke, Style
+from lgraph.frame_writers import GifWriter
 
 
 def _same(drawing: Drawing, **options: object) -> None:
@@ -133,3 +136,95 @@ def test_far_off_points_and_empty_drawings():
                       page=Page(width=200.0, height=120.0, margin=0.0),
                       window=(0.0, 0.0, 100.0, 60.0))  # fmt: skip
     _same(outside, size=240, gray=True)  # nothing on the page
+
+
+# -- GIF frames ----------------------------------------------------------------
+def _turntable_frames(monkeypatch, tmp_path, hidden_lines: bool) -> list[tuple[Drawing, dict]]:
+    """The drawings ``lg.animate`` rasterizes for a small turntable."""
+    seen = []
+    real = png.render_image
+
+    def spy(d, **kw):
+        seen.append((d, kw))
+        return real(d, **kw)
+
+    monkeypatch.setattr(png, "render_image", spy)
+    scene = lg.Scene()
+    scene.add(lg.Ellipsoid(3, 2, 1.3), lg.LinesOfCurvature(6, 8))
+    lg.animate(scene, lg.orbit(elevation=30, frames=6), tmp_path / "t.gif", width=160,
+               hidden_lines=hidden_lines, progress=False, workers=1)  # fmt: skip
+    monkeypatch.undo()
+    return seen
+
+
+def _descriptors(path) -> list[tuple[int, int, int, int]]:
+    """(left, top, width, height) of every image in a GIF without a global table."""
+    data = path.read_bytes()
+    assert data[:6] == b"GIF89a" and not data[10] & 0x80
+    pos, out = 13, []
+
+    def skip_blocks(pos: int) -> int:
+        while data[pos]:
+            pos += data[pos] + 1
+        return pos + 1
+
+    while data[pos] != 0x3B:
+        if data[pos] == 0x21:
+            pos = skip_blocks(pos + 2)
+            continue
+        assert data[pos] == 0x2C
+        out.append(struct.unpack("<HHHH", data[pos + 1 : pos + 9]))
+        flags = data[pos + 9]
+        pos += 10 + (3 << ((flags & 7) + 1) if flags & 0x80 else 0)
+        pos = skip_blocks(pos + 1)
+    return out
+
+
+@pytest.mark.parametrize("hidden_lines", [False, True])
+def test_gif_frames_decode_to_the_reference_pixels(monkeypatch, tmp_path, hidden_lines):
+    frames = _turntable_frames(monkeypatch, tmp_path, hidden_lines)
+    want = [ref.render_image(d, **kw)[0] for d, kw in frames]
+    got = [png.render_image(d, **kw)[0] for d, kw in frames]
+    assert all(im.mode == "L" for im in got)
+    # the last frame twice (nothing changes: one pixel is encoded), the first again
+    images, want = [*got, got[-1], got[0]], [*want, want[-1], want[0]]
+    w = GifWriter(tmp_path / "a.gif", n_frames=len(images), fps=10)
+    for im in images:
+        w.add(im)
+    path = w.close()
+    gif = Image.open(path)
+    assert gif.n_frames == len(images)
+    for k, im in enumerate(want):
+        gif.seek(k)
+        assert np.array_equal(np.asarray(gif.convert("L")), np.asarray(im)), k
+    # the whole first frame, then only the boxes that changed
+    boxes = _descriptors(path)
+    full = (0, 0, *want[0].size)
+    assert boxes[0] == full and boxes[-2] == (0, 0, 1, 1)
+    assert all(b[2] * b[3] < full[2] * full[3] for b in boxes[1:])
+    # smaller than whole frames, each encoded as before
+    whole = sum(len(ref.gif_frame(im)) for im in want)
+    assert path.stat().st_size < whole
+
+
+def test_gif_boxes_across_colour_frames_and_sizes(tmp_path):
+    # a colour frame in between: the grey frame after it is whole again
+    grey = Image.new("L", (40, 30), 255)
+    grey.paste(0, (5, 5, 9, 9))
+    moved = Image.new("L", (40, 30), 255)
+    moved.paste(0, (20, 10, 24, 14))
+    colour = Image.new("RGB", (40, 30), (255, 0, 0))
+    w = GifWriter(tmp_path / "a.gif", n_frames=4, fps=10)
+    for im in (grey, moved, colour, grey):
+        w.add(im)
+    path = w.close()
+    assert _descriptors(path) == [(0, 0, 40, 30), (5, 5, 19, 9), (0, 0, 40, 30), (0, 0, 40, 30)]
+    gif = Image.open(path)
+    for k, want in enumerate((grey, moved, colour.convert("L"), grey)):
+        gif.seek(k)
+        assert np.array_equal(np.asarray(gif.convert("L")), np.asarray(want)), k
+    w = GifWriter(tmp_path / "b.gif", n_frames=2, fps=10)
+    w.add(grey)
+    with pytest.raises(ValueError, match=r"frame 1 is \(30, 40\) px, the first \(40, 30\)"):
+        w.add(Image.new("L", (30, 40), 255))
+    w.abort()
