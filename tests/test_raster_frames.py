@@ -1,13 +1,14 @@
-"""Cheaper raster frames, the same pixels: ``render_image`` (strokes drawn on
-the rows that hold ink only, coordinates handed to pillow as truncated float32
-arrays, only the inked columns box-reduced) and the GIF writer (only the box
-that changed since the last grey frame) against the straightforward way in
-``tests/raster_reference.py``, pixel for pixel."""
+"""Cheaper raster frames, the same pixels: ``render_image`` (coordinates handed
+to pillow as truncated float32 arrays, only the box the strokes reach cleared
+and box-reduced, a grey frame's canvas kept for the next one) and the GIF
+writer (only the box that changed since the last grey frame) against the
+straightforward way in ``tests/raster_reference.py``, pixel for pixel."""
 
 from __future__ import annotations
 
 import struct
 import warnings
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
@@ -60,7 +61,7 @@ def _random_drawing(seed: int, background: object = (1.0, 1.0, 1.0)) -> Drawing:
 @pytest.mark.parametrize("supersample", [1, 2, 3, 4])
 def test_random_strokes_give_the_reference_pixels(seed, supersample):
     d = _random_drawing(seed)
-    for size in (97, 240, 401):  # odd sizes: the rows and columns at every phase
+    for size in (97, 240, 401):  # odd sizes: boxes at every phase of the supersampling
         _same(d, size=size, supersample=supersample, gray=True)
     _same(d, size=240, supersample=supersample)  # RGB
 
@@ -90,7 +91,7 @@ def test_hidden_lines_labels_and_page_wide_strokes():
 
 
 def test_strokes_reach_at_most_half_their_width_and_2_px_beyond_their_points():
-    # the bound behind the rows that are drawn (png._ink_box): pillow's own
+    # the bound behind the box that is cleared and reduced (png._ink_box): pillow's own
     # lines, wide polygons and discs, drawn on a whole canvas, brute force
     rng = np.random.default_rng(3)
     for lw in range(1, 16):
@@ -108,8 +109,8 @@ def test_strokes_reach_at_most_half_their_width_and_2_px_beyond_their_points():
 
 
 @pytest.mark.parametrize("supersample", [2, 3, 4])
-def test_bands_of_ink_at_every_phase_of_the_rows(supersample):
-    # short strokes in a band of the page: the drawn rows start inside the
+def test_small_boxes_at_every_phase_of_the_supersampling(supersample):
+    # short strokes in a band of the page: the box starts inside the
     # page, at every offset against the supersampling grid
     rng = np.random.default_rng(supersample)
     for k in range(24):
@@ -122,6 +123,28 @@ def test_bands_of_ink_at_every_phase_of_the_rows(supersample):
         d = Drawing(strokes=strokes, page=Page(width=200.0, height=120.0, margin=0.0),
                     window=(0.0, 0.0, 100.0, 60.0))  # fmt: skip
         _same(d, size=int(rng.integers(150, 260)), supersample=supersample, gray=True)
+
+
+def test_a_kept_canvas_shows_nothing_of_the_frame_before():
+    # a grey frame's canvas is reused: ink of the last frame outside this one's box
+    big = _random_drawing(11)
+    small = Drawing(strokes=(_stroke([[40.0, 20.0], [60.0, 35.0]], width=0.5),),
+                    page=big.page, window=big.window)  # fmt: skip
+    for d in (big, small, big, _random_drawing(12), small):
+        _same(d, size=240, gray=True)
+
+
+def test_threads_draw_on_canvases_of_their_own():
+    drawings = [_random_drawing(seed) for seed in range(8)]
+    want = [np.asarray(ref.render_image(d, size=240, gray=True)[0]) for d in drawings]
+
+    def render(d: Drawing) -> np.ndarray:
+        return np.asarray(png.render_image(d, size=240, gray=True)[0])
+
+    with ThreadPoolExecutor(4) as pool:
+        for _ in range(3):
+            got = list(pool.map(render, drawings))
+            assert all(np.array_equal(g, w) for g, w in zip(got, want))
 
 
 def test_far_off_points_and_empty_drawings():

@@ -9,11 +9,10 @@ turning angle opens a visible gap), found with one vectorized test.
 
 Animation frames make this path hot, so it does no more work than the pixels
 need, without changing one of them: all points are mapped at once and handed
-to pillow as the integers it would truncate them to (one float32 array), the
-strokes are drawn only on the rows of the supersampled canvas that get ink
-(moved up by whole rows, which pillow's integer rasterization follows
-exactly, see :func:`_ink_box`), and only the inked columns are reduced and
-pasted onto the background.
+to pillow as the integers it would truncate them to (one float32 array), only
+the box of the supersampled canvas that the strokes can reach is box-reduced
+(and pasted onto the background), and a grey frame's canvas is kept for the
+next frame of the same size, with only that box cleared.
 
 >>> import numpy as np, tempfile, os
 >>> from PIL import Image
@@ -32,6 +31,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import threading
 import warnings
 from typing import Any
 
@@ -114,37 +114,34 @@ def _disc_vertices(px: np.ndarray, radius: float) -> np.ndarray:
 #: Below this, pixel coordinates truncated to integers are exact in float32.
 _F32_EXACT = 2.0**24
 
+#: Grey supersampled canvases up to this many pixels (4 MB) are kept, one per
+#: thread, for the next frame of the same size.
+_REUSE_MAX_PIXELS = 2**22
+_reused = threading.local()
 
-def _pillow_xy(px: np.ndarray, top: int, small: bool) -> Any:
-    """Pixel coordinates ``px`` as pillow takes them on the canvas rows from
-    row ``top`` of the full canvas.
 
-    Pillow truncates every coordinate of a line, polygon or ellipse to an
-    integer (toward zero) and rasterizes from those integers; so when the
-    points are ``small`` (within ``2**24`` px) they go as those integers,
-    moved up by ``top``, in a float32 array (exact; pillow reads its buffer,
-    with no Python float per coordinate).  Otherwise as the list of floats
-    (and ``top`` is 0).
+def _pillow_xy(px: np.ndarray, small: bool) -> Any:
+    """Pixel coordinates ``px`` as pillow takes them.
+
+    Pillow truncates every coordinate of a line or an ellipse to an integer
+    (toward zero) and rasterizes from those integers; so when the points are
+    ``small`` (within ``2**24`` px) they go as those integers in a float32
+    array (exact; pillow reads its buffer, with no Python float per
+    coordinate).  Otherwise as the list of floats.
     """
-    if not small:
-        return px.ravel().tolist()
-    q = np.trunc(px)
-    if top:
-        q[:, 1] -= top
-    return q.astype(np.float32)
+    return np.trunc(px).astype(np.float32) if small else px.ravel().tolist()
 
 
 def _draw_polyline(
-    draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int, top: int, small: bool
+    draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int, small: bool
 ) -> None:
-    """Draw one polyline in supersampled pixel coordinates with round caps/joins
-    on the canvas rows from ``top`` (see :func:`_pillow_xy`)."""
-    draw.line(_pillow_xy(px, top, small), fill=ink, width=lw)
-    _draw_discs(draw, px, ink, lw, top, small)
+    """Draw one polyline in supersampled pixel coordinates with round caps/joins."""
+    draw.line(_pillow_xy(px, small), fill=ink, width=lw)
+    _draw_discs(draw, px, ink, lw, small)
 
 
 def _draw_discs(
-    draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int, top: int, small: bool
+    draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int, small: bool
 ) -> None:
     """The round caps and joins of the polyline ``px`` (none below 3 px wide)."""
     if lw < 3:
@@ -152,7 +149,7 @@ def _draw_discs(
     r = (lw - 1) / 2.0
     c = px[_disc_vertices(px, lw / 2.0)]
     corners = np.stack([c - r, c + r], axis=1).reshape(-1, 2)  # (x - r, y - r), (x + r, y + r)
-    boxes = np.asarray(_pillow_xy(corners, top, small), dtype=float).reshape(-1, 4)
+    boxes = np.asarray(_pillow_xy(corners, small), dtype=float).reshape(-1, 4)
     for box in boxes.tolist():
         draw.ellipse(box, fill=ink)
 
@@ -161,20 +158,14 @@ def _ink_box(
     bounds: tuple[float, float, float, float], lw_max: int, ss: int, size: tuple[int, int]
 ) -> tuple[int, int, int, int]:
     """A box ``(left, top, right, bottom)`` of the supersampled canvas of
-    ``size`` px, on multiples of ``ss``, that holds every pixel of the strokes
-    through points within ``bounds`` (``xmin, xmax, ymin, ymax``), at most
-    ``lw_max`` px wide.
+    ``size`` px, on multiples of ``ss`` and within the canvas, that holds every
+    pixel of the strokes through points within ``bounds`` (``xmin, xmax, ymin,
+    ymax``), at most ``lw_max`` px wide: only this box needs the background
+    and the box filter.
 
     A stroke reaches at most ``lw_max / 2 + 2`` px beyond its points (pillow
-    truncates coordinates to integers and rounds polygon corners up); the
-    margin is ``lw_max + 3``.  The strokes are drawn on the rows ``top:bottom``
-    only, their truncated coordinates moved up by ``top`` (:func:`_pillow_xy`),
-    with the same pixels as on the whole canvas: pillow rasterizes lines,
-    polygons and discs from integer coordinates, in y only through differences
-    of rows (``y - y0``), so a shift by whole rows shifts the pixels and
-    changes nothing else.  (Nothing moves in x: pillow's polygon edges are
-    single-precision sums ``k dx + x0``, which a shift in x could round
-    differently.)  Only the columns ``left:right`` are box-reduced.
+    truncates coordinates to integers, rounds polygon corners up and draws a
+    disc within its integer box); the margin is ``lw_max + 3``.
     """
     x0, x1, y0, y1 = bounds
     W, H = size
@@ -186,18 +177,44 @@ def _ink_box(
     return left, top, right, bottom
 
 
-def _onto_page(rows: Any, box: tuple[int, ...], ss: int, size: tuple[int, int], fill: Any) -> Any:
-    """The page of ``size`` px: the canvas rows ``rows`` (the box's rows)
-    reduced by ``ss`` within the box's columns, on the background elsewhere."""
+def _canvas(mode: str, size: tuple[int, int], fill: Any, box: tuple[int, int, int, int]) -> Any:
+    """A supersampled canvas of ``size`` px with the background ``fill`` in
+    ``box`` (the only part drawn on and read): grey ones up to
+    ``_REUSE_MAX_PIXELS`` are this thread's canvas of the last frame of that
+    size, with just the box cleared (no new memory to fault in and fill).
+    Pillow draws by overwriting pixels and no stroke reaches outside the box
+    (:func:`_ink_box`), so the box comes out as on a new canvas."""
     from PIL import Image
 
-    left, top, right, bottom = box
+    if mode != "L" or size[0] * size[1] > _REUSE_MAX_PIXELS:
+        return Image.new(mode, size, fill)
+    img = getattr(_reused, "canvas", None)
+    if img is None or img.size != size:
+        img = _reused.canvas = None  # the old one freed first
+        img = _reused.canvas = Image.new(mode, size, fill)
+    else:
+        img.paste(fill, box)
+    return img
+
+
+def _onto_page(
+    canvas: Any,
+    mode: str,
+    box: tuple[int, int, int, int],
+    ss: int,
+    size: tuple[int, int],
+    fill: Any,
+) -> Any:
+    """The page of ``size`` px: the ``box`` of the supersampled ``canvas``
+    (None if the box is empty) reduced by ``ss``, on the background elsewhere."""
+    from PIL import Image
+
+    left, top = box[:2]
     if ss > 1:  # the background as the box filter gives it
-        fill = Image.new(rows.mode, (ss, ss), fill).reduce(ss).getpixel((0, 0))
-    page = Image.new(rows.mode, size, fill)
-    if right > left and bottom > top:
-        part = (left, 0, right, bottom - top)
-        part = rows.reduce(ss, box=part) if ss > 1 else rows.crop(part)
+        fill = Image.new(mode, (ss, ss), fill).reduce(ss).getpixel((0, 0))
+    page = Image.new(mode, size, fill)
+    if canvas is not None:
+        part = canvas.reduce(ss, box=box) if ss > 1 else canvas.crop(box)
         page.paste(part, (left // ss, top // ss))
     return page
 
@@ -334,7 +351,7 @@ def render_image(
     the RGB image's channels, drawn and box-reduced in a third of the memory
     (animation frames use it; a GIF takes it without a palette search).
     """
-    from PIL import Image, ImageDraw
+    from PIL import ImageDraw
 
     pw, ph = drawing.page_size()
     w, h, sx, sy, centre = _image_size(pw, ph, dpi, size)
@@ -361,29 +378,30 @@ def render_image(
 
     full = (0, 0, w * ss, h * ss)
     box, small = full, False
-    n = len(px)
-    if n:
+    if len(px):
         xs, ys = px[:, 0], px[:, 1]  # (a reduction along axis 0 of px is slow)
         bounds = (xs.min(), xs.max(), ys.min(), ys.max())
         small = bool(-_F32_EXACT < min(bounds) and max(bounds) < _F32_EXACT)
     labels = getattr(drawing, "labels", ())
-    if not n and not too_wide and not labels:
-        box = (0, 0, 0, 0)  # nothing to draw: the background
-    elif small and not too_wide and not labels:
-        box = _ink_box(bounds, max(p[3] for p in plan), ss, full[2:])
-    top = box[1]
-    img = Image.new(mode, (w * ss, box[3] - top), fill)
-    draw = ImageDraw.Draw(img)
-    xy = _pillow_xy(px, top, small)  # all points at once
-    for start, stop, ink, lw, pattern in plan:
-        if not lw:
-            draw.rectangle((0, 0, w * ss, h * ss), fill=ink)
-        elif pattern:
-            for piece in dash_polyline(px[start:stop], pattern):
-                _draw_polyline(draw, piece, ink, lw, top, small)
-        else:
-            draw.line(xy[start:stop] if small else xy[2 * start : 2 * stop], fill=ink, width=lw)
-            _draw_discs(draw, px[start:stop], ink, lw, top, small)
+    if not too_wide and not labels:
+        if small:
+            box = _ink_box(bounds, max(p[3] for p in plan), ss, full[2:])
+        elif not len(px):
+            box = (0, 0, 0, 0)  # nothing to draw
+    img = None
+    if box[2] > box[0] and box[3] > box[1]:  # else no stroke reaches the page
+        img = _canvas(mode, full[2:], fill, box)
+        draw = ImageDraw.Draw(img)
+        xy = _pillow_xy(px, small)  # all points at once
+        for start, stop, ink, lw, pattern in plan:
+            if not lw:
+                draw.rectangle((0, 0, w * ss, h * ss), fill=ink)
+            elif pattern:
+                for piece in dash_polyline(px[start:stop], pattern):
+                    _draw_polyline(draw, piece, ink, lw, small)
+            else:
+                draw.line(xy[start:stop] if small else xy[2 * start : 2 * stop], fill=ink, width=lw)
+                _draw_discs(draw, px[start:stop], ink, lw, small)
     if too_wide:
         warnings.warn(
             f"write_png: stroke widths {sorted(too_wide)} pt exceed twice the image's "
@@ -401,8 +419,8 @@ def render_image(
         from ._labels import png_labels
 
         png_labels(img, drawing, mat, off, mode == "RGBA")
-    if box == full:
-        img = img.reduce(ss) if ss > 1 else img
-    else:
-        img = _onto_page(img, box, ss, (w, h), fill)
+    if box == full and ss > 1:
+        img = img.reduce(ss)
+    elif box != full or img is getattr(_reused, "canvas", None):  # not the kept canvas
+        img = _onto_page(img, mode, box, ss, (w, h), fill)
     return img, 72.0 * math.sqrt(sx * sy)
