@@ -146,7 +146,6 @@ def _png_bytes(im: Any) -> bytes:
     return buf.getvalue()
 
 
-_INVERT = [255 - g for g in range(256)]
 _DESCENDING_GREYS = bytes(c for g in range(255, -1, -1) for c in (g, g, g))
 
 
@@ -167,7 +166,7 @@ def _gif_frame(
     """Encode one frame (a grey one only within ``box``, if given) as GIF with
     pillow; return the frame's size, the image descriptor with a local colour
     table, and the LZW image data."""
-    from PIL import Image
+    from PIL import Image, ImageChops
 
     im = as_image(frame)
     buf = io.BytesIO()
@@ -177,7 +176,7 @@ def _gif_frame(
         # pillow take a GIF whose first palette is the ascending grey ramp for a
         # greyscale image and then turn later colour frames grey.
         part = im if box is None or box == (0, 0, *im.size) else im.crop(box)
-        pal = part.point(_INVERT)
+        pal = ImageChops.invert(part)  # 255 - g
         pal.putpalette(_DESCENDING_GREYS)  # "L" -> "P" in place
         pal.save(buf, "GIF", optimize=False)
     else:
