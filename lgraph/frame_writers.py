@@ -2,12 +2,13 @@
 
 Each writer takes frames one at a time (``add``: a pillow image or PNG bytes
 for raster formats) and keeps only what the format needs to finish the file,
-never the decoded frames:
+never all the decoded frames (the GIF writer keeps the last grey one):
 
 * :class:`GifWriter` -- animated GIF; every colour frame is quantized to its
   own 256-colour palette by pillow (fast octree), a grey (``"L"``) frame
-  keeps its grey levels exactly, and each is spliced in as it comes
-  (pillow's own ``save_all`` holds every frame until the end);
+  keeps its grey levels exactly, and only the box where it differs from the
+  grey frame before is encoded (the rest stays on screen); each is spliced
+  in as it comes (pillow's own ``save_all`` holds every frame until the end);
 * :class:`ApngWriter` -- animated PNG: pillow's PNG encoding of each frame,
   its ``IDAT`` data re-chunked as the APNG ``fdAT`` frames;
 * :class:`WebpWriter` -- animated WebP through pillow (libwebp assembles the
@@ -145,14 +146,27 @@ def _png_bytes(im: Any) -> bytes:
     return buf.getvalue()
 
 
-_INVERT = [255 - g for g in range(256)]
 _DESCENDING_GREYS = bytes(c for g in range(255, -1, -1) for c in (g, g, g))
 
 
-def _gif_frame(frame: Any) -> tuple[tuple[int, int], bytes, bytes]:
-    """Encode one frame as GIF with pillow; return its size, its image
-    descriptor with a local colour table, and its LZW image data."""
-    from PIL import Image
+def _changed_box(previous: Any, im: Any) -> tuple[int, int, int, int] | None:
+    """The box of the pixels where the grey frame ``im`` differs from the grey
+    frame ``previous`` (one pixel when none does); None for the whole frame."""
+    from PIL import ImageChops
+
+    if previous is None or previous.size != im.size:
+        return None
+    box = ImageChops.difference(previous, im).getbbox()
+    return box if box is not None else (0, 0, 1, 1)
+
+
+def _gif_frame(
+    frame: Any, box: tuple[int, int, int, int] | None = None
+) -> tuple[tuple[int, int], bytes, bytes]:
+    """Encode one frame (a grey one only within ``box``, if given) as GIF with
+    pillow; return the frame's size, the image descriptor with a local colour
+    table, and the LZW image data."""
+    from PIL import Image, ImageChops
 
     im = as_image(frame)
     buf = io.BytesIO()
@@ -161,10 +175,12 @@ def _gif_frame(frame: Any) -> tuple[tuple[int, int], bytes, bytes]:
         # Stored in descending order (index 255 - g for grey g): readers such as
         # pillow take a GIF whose first palette is the ascending grey ramp for a
         # greyscale image and then turn later colour frames grey.
-        pal = Image.frombytes("P", im.size, im.point(_INVERT).tobytes())
-        pal.putpalette(_DESCENDING_GREYS)
+        part = im if box is None or box == (0, 0, *im.size) else im.crop(box)
+        pal = ImageChops.invert(part)  # 255 - g
+        pal.putpalette(_DESCENDING_GREYS)  # "L" -> "P" in place
         pal.save(buf, "GIF", optimize=False)
     else:
+        box = None
         im = im.convert("RGB")
         pal = im.quantize(colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
         pal.save(buf, "GIF")
@@ -181,6 +197,8 @@ def _gif_frame(frame: Any) -> tuple[tuple[int, int], bytes, bytes]:
     if data[pos] != 0x2C:  # pragma: no cover - pillow always writes an image
         raise ValueError("animate: pillow wrote a GIF without an image descriptor")
     desc = bytearray(data[pos : pos + 10])
+    if box is not None:  # the part's place in the frame
+        desc[1:5] = struct.pack("<HH", box[0], box[1])
     pos += 10
     if desc[9] & 0x80:  # a local table already
         size = 3 << ((desc[9] & 7) + 1)
@@ -206,9 +224,13 @@ class GifWriter(FrameWriter):
         self.loop = loop
         self.delay = max(2, round(100 / fps))
         self.size: tuple[int, int] | None = None
+        self.previous: Any = None  # the last frame, if grey
 
     def _add(self, frame: Any) -> None:
-        size, desc, image = _gif_frame(frame)
+        im = as_image(frame)
+        grey = im.mode == "L"
+        size, desc, image = _gif_frame(im, _changed_box(self.previous, im) if grey else None)
+        self.previous = im if grey else None
         f = self._file
         if self.size is None:
             self.size = size

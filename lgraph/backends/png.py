@@ -7,6 +7,13 @@ Lanczos filter.  Round caps and joins are drawn as discs: pillow's own
 discs go only where they show (stroke ends, dash ends and vertices whose
 turning angle opens a visible gap), found with one vectorized test.
 
+Animation frames make this path hot, so it does no more work than the pixels
+need, without changing one of them: all points are mapped at once and handed
+to pillow as the integers it would truncate them to (one float32 array), only
+the box of the supersampled canvas that the strokes can reach is box-reduced
+(and pasted onto the background), and a grey frame's canvas is kept for the
+next frame of the same size, with only that box cleared.
+
 >>> import numpy as np, tempfile, os
 >>> from PIL import Image
 >>> from lgraph.drawing import Drawing, Page, Stroke
@@ -24,6 +31,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import threading
 import warnings
 from typing import Any
 
@@ -103,14 +111,112 @@ def _disc_vertices(px: np.ndarray, radius: float) -> np.ndarray:
     return np.concatenate([ends, inner])
 
 
-def _draw_polyline(draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int) -> None:
+#: Below this, pixel coordinates truncated to integers are exact in float32.
+_F32_EXACT = 2.0**24
+
+#: Grey supersampled canvases up to this many pixels (4 MB) are kept, one per
+#: thread, for the next frame of the same size.
+_REUSE_MAX_PIXELS = 2**22
+_reused = threading.local()
+
+
+def _pillow_xy(px: np.ndarray, small: bool) -> Any:
+    """Pixel coordinates ``px`` as pillow takes them.
+
+    Pillow truncates every coordinate of a line or an ellipse to an integer
+    (toward zero) and rasterizes from those integers; so when the points are
+    ``small`` (within ``2**24`` px) they go as those integers in a float32
+    array (exact; pillow reads its buffer, with no Python float per
+    coordinate).  Otherwise as the list of floats.
+    """
+    return np.trunc(px).astype(np.float32) if small else px.ravel().tolist()
+
+
+def _draw_polyline(
+    draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int, small: bool
+) -> None:
     """Draw one polyline in supersampled pixel coordinates with round caps/joins."""
-    draw.line(px.ravel().tolist(), fill=ink, width=lw)
+    draw.line(_pillow_xy(px, small), fill=ink, width=lw)
+    _draw_discs(draw, px, ink, lw, small)
+
+
+def _draw_discs(
+    draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int, small: bool
+) -> None:
+    """The round caps and joins of the polyline ``px`` (none below 3 px wide)."""
     if lw < 3:
         return
     r = (lw - 1) / 2.0
-    for x, y in px[_disc_vertices(px, lw / 2.0)].tolist():
-        draw.ellipse((x - r, y - r, x + r, y + r), fill=ink)
+    c = px[_disc_vertices(px, lw / 2.0)]
+    corners = np.stack([c - r, c + r], axis=1).reshape(-1, 2)  # (x - r, y - r), (x + r, y + r)
+    boxes = np.asarray(_pillow_xy(corners, small), dtype=float).reshape(-1, 4)
+    for box in boxes.tolist():
+        draw.ellipse(box, fill=ink)
+
+
+def _ink_box(
+    bounds: tuple[float, float, float, float], lw_max: int, ss: int, size: tuple[int, int]
+) -> tuple[int, int, int, int]:
+    """A box ``(left, top, right, bottom)`` of the supersampled canvas of
+    ``size`` px, on multiples of ``ss`` and within the canvas, that holds every
+    pixel of the strokes through points within ``bounds`` (``xmin, xmax, ymin,
+    ymax``), at most ``lw_max`` px wide: only this box needs the background
+    and the box filter.
+
+    A stroke reaches at most ``lw_max / 2 + 2`` px beyond its points (pillow
+    truncates coordinates to integers, rounds polygon corners up and draws a
+    disc within its integer box); the margin is ``lw_max + 3``.
+    """
+    x0, x1, y0, y1 = bounds
+    W, H = size
+    margin = lw_max + 3
+    left = min(W, max(0, math.floor((x0 - margin) / ss) * ss))
+    top = min(H, max(0, math.floor((y0 - margin) / ss) * ss))
+    right = max(left, min(W, math.ceil((x1 + margin) / ss) * ss))
+    bottom = max(top, min(H, math.ceil((y1 + margin) / ss) * ss))
+    return left, top, right, bottom
+
+
+def _canvas(mode: str, size: tuple[int, int], fill: Any, box: tuple[int, int, int, int]) -> Any:
+    """A supersampled canvas of ``size`` px with the background ``fill`` in
+    ``box`` (the only part drawn on and read): grey ones up to
+    ``_REUSE_MAX_PIXELS`` are this thread's canvas of the last frame of that
+    size, with just the box cleared (no new memory to fault in and fill).
+    Pillow draws by overwriting pixels and no stroke reaches outside the box
+    (:func:`_ink_box`), so the box comes out as on a new canvas."""
+    from PIL import Image
+
+    if mode != "L" or size[0] * size[1] > _REUSE_MAX_PIXELS:
+        return Image.new(mode, size, fill)
+    img = getattr(_reused, "canvas", None)
+    if img is None or img.size != size:
+        img = _reused.canvas = None  # the old one freed first
+        img = _reused.canvas = Image.new(mode, size, fill)
+    else:
+        img.paste(fill, box)
+    return img
+
+
+def _onto_page(
+    canvas: Any,
+    mode: str,
+    box: tuple[int, int, int, int],
+    ss: int,
+    size: tuple[int, int],
+    fill: Any,
+) -> Any:
+    """The page of ``size`` px: the ``box`` of the supersampled ``canvas``
+    (None if the box is empty) reduced by ``ss``, on the background elsewhere."""
+    from PIL import Image
+
+    left, top = box[:2]
+    if ss > 1:  # the background as the box filter gives it
+        fill = Image.new(mode, (ss, ss), fill).reduce(ss).getpixel((0, 0))
+    page = Image.new(mode, size, fill)
+    if canvas is not None:
+        part = canvas.reduce(ss, box=box) if ss > 1 else canvas.crop(box)
+        page.paste(part, (left // ss, top // ss))
+    return page
 
 
 def write_png(
@@ -180,9 +286,53 @@ def _is_gray(drawing: Any, bg: tuple[float, float, float] | None) -> bool:
     pixels: an opaque grey background, grey strokes and no labels."""
     if bg is None or getattr(drawing, "labels", ()):
         return False
-    inks = {tuple(round(c * 255) for c in bg)}
-    inks.update(tuple(round(c * 255) for c in s.style.color) for s in drawing.strokes)
-    return all(r == g == b for r, g, b in inks)
+    colors = {bg, *(s.style.color for s in drawing.strokes)}
+    return all(r == g == b for r, g, b in (tuple(round(c * 255) for c in rgb) for rgb in colors))
+
+
+def _plan(
+    drawing: Any,
+    mode: str,
+    mat: np.ndarray,
+    off: np.ndarray,
+    unit: float,
+    ss: int,
+    max_width: float,
+) -> tuple[list[tuple[Any, ...]], np.ndarray, set[float], set[tuple[float, ...]]]:
+    """What to draw: for each run of points, ``(first point, end, ink, width in
+    px, dash pattern in px or None)`` (width 0: a stroke at least ``max_width``
+    px wide, which covers the page); all the runs' points in supersampled
+    pixels, mapped at once; the too wide widths and the dash patterns drawn
+    solid (shorter than a pixel), both in pt; ``unit`` is px per pt."""
+    solid_dashes: set[tuple[float, ...]] = set()
+    too_wide: set[float] = set()
+    plan, chunks, n = [], [], 0
+    inks: dict[tuple[float, ...], Any] = {}
+    for pts, stroke in page_runs(drawing):
+        style = stroke.style
+        ink = inks.get(style.color)
+        if ink is None:
+            ink = tuple(round(c * 255) for c in style.color)
+            ink = (*ink, 255) if mode == "RGBA" else ink[0] if mode == "L" else ink
+            inks[style.color] = ink
+        if style.width * unit >= max_width:
+            # a stroke this wide covers every pixel of the page: one fill, not
+            # thousands of page-sized polygons
+            too_wide.add(style.width)
+            plan.append((0, 0, ink, 0, None))
+            continue
+        pattern = None
+        if style.dash and min(style.dash) * unit < ss:
+            solid_dashes.add(tuple(style.dash))  # shorter than a pixel: drawn solid
+        elif style.dash:
+            pattern = tuple(x * unit for x in style.dash)
+        plan.append((n, n + len(pts), ink, max(1, round(style.width * unit)), pattern))
+        chunks.append(pts)
+        n += len(pts)
+    # mat is diagonal, so this is bit for bit ``pts @ mat + off`` run by run
+    # (x * a + y * 0 rounds once, with or without a fused multiply-add)
+    px = np.concatenate(chunks) * mat.diagonal() + off if chunks else np.empty((0, 2))
+    return plan, px, too_wide, solid_dashes
 
 
 def render_image(
@@ -201,7 +351,7 @@ def render_image(
     the RGB image's channels, drawn and box-reduced in a third of the memory
     (animation frames use it; a GIF takes it without a palette search).
     """
-    from PIL import Image, ImageDraw
+    from PIL import ImageDraw
 
     pw, ph = drawing.page_size()
     w, h, sx, sy, centre = _image_size(pw, ph, dpi, size)
@@ -216,9 +366,6 @@ def render_image(
         mode, fill = "L", round(bg[0] * 255)
     else:
         mode, fill = "RGB", tuple(round(c * 255) for c in bg)
-    img = Image.new(mode, (w * ss, h * ss), fill)
-    draw = ImageDraw.Draw(img)
-
     # Page pt (y up) -> supersampled pixel coordinates (y down, pixel centres
     # at integer + 0.5 in continuous coordinates).
     ox = centre * (w - pw * sx) / 2.0
@@ -227,32 +374,34 @@ def render_image(
     off = np.array([ox * ss - 0.5, (oy + ph * sy) * ss - 0.5])
     unit = math.sqrt(sx * sy) * ss  # supersampled px per pt for widths and dashes
     diag = math.hypot(w * ss, h * ss)  # canvas diagonal in supersampled px
-    solid_dashes: set[tuple[float, ...]] = set()
-    too_wide: set[float] = set()
+    plan, px, too_wide, solid_dashes = _plan(drawing, mode, mat, off, unit, ss, 2 * diag)
 
-    for pts, stroke in page_runs(drawing):
-        style = stroke.style
-        ink = tuple(round(c * 255) for c in style.color)
-        if mode == "RGBA":
-            ink = (*ink, 255)
-        elif mode == "L":
-            ink = ink[0]
-        if style.width * unit >= 2 * diag:
-            # a stroke this wide covers every pixel of the page: one fill, not
-            # thousands of page-sized polygons
-            too_wide.add(style.width)
-            draw.rectangle((0, 0, w * ss, h * ss), fill=ink)
-            continue
-        lw = max(1, round(style.width * unit))
-        px = pts @ mat + off
-        if style.dash and min(style.dash) * unit < ss:
-            solid_dashes.add(tuple(style.dash))  # shorter than a pixel: drawn solid
-        elif style.dash:
-            pattern = tuple(x * unit for x in style.dash)
-            for piece in dash_polyline(px, pattern):
-                _draw_polyline(draw, piece, ink, lw)
-            continue
-        _draw_polyline(draw, px, ink, lw)
+    full = (0, 0, w * ss, h * ss)
+    box, small = full, False
+    if len(px):
+        xs, ys = px[:, 0], px[:, 1]  # (a reduction along axis 0 of px is slow)
+        bounds = (xs.min(), xs.max(), ys.min(), ys.max())
+        small = bool(-_F32_EXACT < min(bounds) and max(bounds) < _F32_EXACT)
+    labels = getattr(drawing, "labels", ())
+    if not too_wide and not labels:
+        if small:
+            box = _ink_box(bounds, max(p[3] for p in plan), ss, full[2:])
+        elif not len(px):
+            box = (0, 0, 0, 0)  # nothing to draw
+    img = None
+    if box[2] > box[0] and box[3] > box[1]:  # else no stroke reaches the page
+        img = _canvas(mode, full[2:], fill, box)
+        draw = ImageDraw.Draw(img)
+        xy = _pillow_xy(px, small)  # all points at once
+        for start, stop, ink, lw, pattern in plan:
+            if not lw:
+                draw.rectangle((0, 0, w * ss, h * ss), fill=ink)
+            elif pattern:
+                for piece in dash_polyline(px[start:stop], pattern):
+                    _draw_polyline(draw, piece, ink, lw, small)
+            else:
+                draw.line(xy[start:stop] if small else xy[2 * start : 2 * stop], fill=ink, width=lw)
+                _draw_discs(draw, px[start:stop], ink, lw, small)
     if too_wide:
         warnings.warn(
             f"write_png: stroke widths {sorted(too_wide)} pt exceed twice the image's "
@@ -266,10 +415,12 @@ def render_image(
             stacklevel=2,
         )
 
-    if getattr(drawing, "labels", ()):
+    if labels:
         from ._labels import png_labels
 
         png_labels(img, drawing, mat, off, mode == "RGBA")
-    if ss > 1:
+    if box == full and ss > 1:
         img = img.reduce(ss)
+    elif box != full or img is getattr(_reused, "canvas", None):  # not the kept canvas
+        img = _onto_page(img, mode, box, ss, (w, h), fill)
     return img, 72.0 * math.sqrt(sx * sy)
