@@ -403,12 +403,14 @@ def animate(
         Times a GIF/APNG/WebP repeats; 0 for ever.
     render_options : dict, optional
         More keywords for :meth:`Scene.render` (``tolerance``, ``hidden_style``).
-        ``{"tolerance": "pixel"}`` samples raster frames only as finely as
-        their pixels show: every chord within
-        ``PIXEL_TOLERANCE`` (0.25, ``lgraph/_tolerance.py``) pixels of its curve
-        (:func:`~lgraph.frame_geometry.pixel_tolerance`; about 4.6e-4 of the diagonal
-        for 480 px frames, 4.6 times the render's default, 1e-4).  Vector
-        frames (PDF, SVG) keep the render's default.
+        ``tolerance`` defaults to ``"pixel"`` for raster frames (GIF, APNG,
+        WebP, PNG): they are sampled only as finely as their pixels show,
+        every chord within ``PIXEL_TOLERANCE`` (0.25, ``lgraph/_tolerance.py``)
+        pixels of its curve (:func:`~lgraph.frame_geometry.pixel_tolerance`;
+        about 4.6e-4 of the diagonal for 480 px frames, 4.6 times the render's
+        default, 1e-4) -- below the third of a pixel to which the rasterizer
+        rounds every point anyway.  Vector frames (PDF, SVG) keep the
+        render's default; a number sets the tolerance of every frame.
 
     Returns
     -------
@@ -432,7 +434,7 @@ def animate(
         raise ValueError(f"animate: workers must be a positive integer or None, got {workers!r}")
     if isinstance(loop, bool) or not isinstance(loop, int) or not 0 <= loop <= 65535:
         raise ValueError(f"animate: loop must be an integer from 0 to 65535, got {loop!r}")
-    options = dict(render_options or {})
+    options = {"tolerance": "pixel", **(render_options or {})}
     options["hidden_lines"] = bool(hidden_lines)
     if isinstance(options.get("tolerance"), str) and options["tolerance"] != "pixel":
         raise ValueError(

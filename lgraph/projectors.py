@@ -52,6 +52,28 @@ def _direction_from_angles(azimuth: float, elevation: float) -> np.ndarray:
     return np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
 
 
+def linear_map(points: np.ndarray, m: np.ndarray) -> np.ndarray:
+    """``points @ m`` for points ``(..., 3)`` and ``m`` ``(3, k)``, or one
+    matrix per point ``(..., 3, k)``: written out term by term, so that every
+    machine (whatever its BLAS) and a point projected alone or among others
+    (:mod:`lgraph.render.views`) get the same bits.
+
+    >>> linear_map(np.array([[1.0, 2.0, 3.0]]), np.eye(3)[:, :2]).tolist()
+    [[1.0, 2.0]]
+    """
+    x, y, z = points[..., 0, None], points[..., 1, None], points[..., 2, None]
+    return x * m[..., 0, :] + y * m[..., 1, :] + z * m[..., 2, :]
+
+
+def unit_rays(w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Vectors ``w`` ``(..., 3)`` (changed in place) divided by their lengths;
+    and the lengths."""
+    n = np.sqrt(w[..., 0] * w[..., 0] + w[..., 1] * w[..., 1] + w[..., 2] * w[..., 2])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w /= n[..., None]
+    return w, n
+
+
 class Projector:
     """Base class: subclasses define the eye.
 
@@ -110,7 +132,7 @@ class ParallelProjector(Projector):
         return cls(direction=_direction_from_angles(azimuth, elevation))
 
     def project(self, points: np.ndarray) -> np.ndarray:
-        return np.asarray(points, dtype=float) @ self._plane
+        return linear_map(np.asarray(points, dtype=float), self._plane)
 
     @property
     def _plane(self) -> np.ndarray:
@@ -189,7 +211,7 @@ class CentralProjector(Projector):
         return (self.eye - np.asarray(points, dtype=float)) @ self.frame[2]
 
     def project(self, points: np.ndarray) -> np.ndarray:
-        q = (np.asarray(points, dtype=float) - self.eye) @ self._basis
+        q = linear_map(np.asarray(points, dtype=float) - self.eye, self._basis)
         with np.errstate(divide="ignore", invalid="ignore"):
             return q[..., :2] * (-self.distance / q[..., 2:])
 
@@ -198,11 +220,7 @@ class CentralProjector(Projector):
         return np.column_stack(self.frame)
 
     def rays(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        w = self.eye - np.asarray(points, dtype=float)
-        n = np.sqrt(np.einsum("...i,...i", w, w))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            w /= n[..., None]
-        return w, n
+        return unit_rays(self.eye - np.asarray(points, dtype=float))
 
     def view_vectors(self, points: np.ndarray) -> np.ndarray:
         return self.eye - np.asarray(points, dtype=float)

@@ -38,15 +38,17 @@ def _frames(path) -> list[np.ndarray]:
     return out
 
 
-def _reference(scene, views, width=WIDTH, hidden_lines=False) -> list[np.ndarray]:
-    """Each frame rendered on its own: the scene, the common window, write_png."""
+def _reference(scene, views, width=WIDTH, hidden_lines=False, **options) -> list[np.ndarray]:
+    """Each frame rendered on its own: the scene, the common window, write_png
+    (the curves sampled to a quarter pixel, animate's default for raster frames)."""
     window = animation.frame_window(scene, views)
     m = 0.03 * width
     h = max(16, round((width - 2 * m) * (window[3] - window[1]) / (window[2] - window[0]) + 2 * m))
     page = lg.Page(width=float(width), height=float(h), margin=m)
+    options.setdefault("tolerance", animation.pixel_tolerance(page))
     out = []
     for v in views:
-        d = scene.render(v, hidden_lines=hidden_lines)
+        d = scene.render(v, hidden_lines=hidden_lines, **options)
         d = lg.Drawing(d.strokes, page=page, window=window, labels=d.labels)
         buf = io.BytesIO()
         d.save(buf, format="png", size=(width, h))
@@ -107,16 +109,7 @@ def test_grey_gif_frames_are_exact_and_colour_ones_close(scene, tmp_path):
     path = lg.animate(scene, views, tmp_path / "c.gif", width=WIDTH, hidden_lines=True,
                       render_options=opts, progress=False)  # fmt: skip
     got = _frames(path)
-    window = animation.frame_window(scene, views)
-    m = 0.03 * WIDTH
-    h = got[0].shape[0]
-    for g, v in zip(got, views):
-        d = scene.render(v, hidden_lines=True, hidden_style=red)
-        d = lg.Drawing(d.strokes, page=lg.Page(width=float(WIDTH), height=float(h), margin=m),
-                       window=window)  # fmt: skip
-        buf = io.BytesIO()
-        d.save(buf, format="png", size=(WIDTH, h))
-        w = np.asarray(Image.open(io.BytesIO(buf.getvalue())).convert("RGB"), dtype=int)
+    for g, w in zip(got, _reference(scene, views, hidden_lines=True, hidden_style=red)):
         assert np.abs(g - w).mean() < 1.0 and np.abs(g - w).max() < 40
     reds = [((f[..., 0] - f[..., 2]) > 60).sum() for f in got]
     assert reds[0] == 0 and reds[1] > 0 and reds[2] > 0
@@ -223,6 +216,14 @@ def test_pixel_tolerance_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypat
         (c0,) = [s.xy for s in render(scene, view).strokes]
         assert _max_sagitta(c0, 1.0) <= 1e-4 * 2 * math.sqrt(2) < sag / px
         assert len(c0) > len(c)
+    # raster frames are sampled to the pixel by default; a number sets every frame's
+    seen.clear()
+    lg.animate(scene, views, tmp_path / "d.gif", width=width, progress=False, workers=1)
+    assert [t for t, _ in seen] == [want] * 3
+    seen.clear()
+    lg.animate(scene, views, tmp_path / "n.gif", width=width, progress=False, workers=1,
+               render_options={"tolerance": 1e-4})  # fmt: skip
+    assert [t for t, _ in seen] == [1e-4] * 3
     # vector frames keep the render's default
     seen.clear()
     lg.animate(scene, views, tmp_path / "t.pdf", progress=False, workers=1, render_options=opts)

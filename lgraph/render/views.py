@@ -18,7 +18,7 @@ from collections.abc import Iterator, Sequence
 
 import numpy as np
 
-from ..projectors import CentralProjector, Projector
+from ..projectors import CentralProjector, Projector, linear_map, unit_rays
 
 __all__ = ["Views", "as_views"]
 
@@ -33,7 +33,17 @@ class Views:
         if not self.projectors:
             raise ValueError("render_views: no views given")
         self.k = len(self.projectors)
-        self.central = np.array([isinstance(p, CentralProjector) for p in self.projectors])
+        central = [isinstance(p, CentralProjector) for p in self.projectors]
+        # views of one kind: their geometry gathered per row (the projectors'
+        # own formulas, term by term, so each row gets the bits its view alone gives)
+        self._kind = "central" if all(central) else "parallel" if not any(central) else None
+        if self._kind == "parallel":
+            self._plane = np.array([p._plane for p in self.projectors])
+            self._toward = np.array([p.frame[2] for p in self.projectors])
+        elif self._kind == "central":
+            self._eye = np.array([p.eye for p in self.projectors])
+            self._basis = np.array([p._basis for p in self.projectors])
+            self._distance = np.array([p.distance for p in self.projectors])
 
     def groups(self, view: np.ndarray | int | None) -> Iterator[tuple[int, np.ndarray | slice]]:
         """``(k, rows)`` for every view ``k`` present among the rows (``view``:
@@ -62,6 +72,12 @@ class Views:
             return self.projectors[0].project(xyz)
         if isinstance(view, (int, np.integer)):
             return self.projectors[view].project(xyz)
+        if self._kind == "parallel":
+            return linear_map(xyz, self._plane[view])
+        if self._kind == "central":
+            q = linear_map(xyz - self._eye[view], self._basis[view])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return q[:, :2] * (-self._distance[view][:, None] / q[:, 2:])
         out = np.empty((len(xyz), 2))
         for k, rows in self.groups(view):
             out[rows] = self.projectors[k].project(xyz[rows])
@@ -76,6 +92,10 @@ class Views:
             return self.projectors[0].rays(xyz)
         if isinstance(view, (int, np.integer)):
             return self.projectors[view].rays(xyz)
+        if self._kind == "parallel":
+            return self._toward[view], np.full(len(xyz), np.inf)
+        if self._kind == "central":
+            return unit_rays(self._eye[view] - xyz)
         dirs, smax = np.empty((len(xyz), 3)), np.empty(len(xyz))
         for k, rows in self.groups(view):
             dirs[rows], smax[rows] = self.projectors[k].rays(xyz[rows])
