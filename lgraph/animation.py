@@ -57,6 +57,7 @@ from .page import Page
 from .progress import Progress
 from .projectors import Projector
 from .render import render_views
+from .render.sampling import PointBudgetError
 
 __all__ = [
     "animate",
@@ -116,10 +117,10 @@ class _Job:
         drawings (PDF pages)."""
         try:
             drawings = render_views(self.scene, views, **self.render_options)
-        except ValueError as e:
-            if "sample points" not in str(e) or len(views) == 1:
+        except PointBudgetError:
+            if len(views) == 1:
                 raise
-            # the batch exceeds the point budget that one view keeps to
+            # the batch exceeds the point budget that one view may keep to
             drawings = [self.scene.render(v, **self.render_options) for v in views]
         return [self._frame(d, portable) for d in drawings]
 

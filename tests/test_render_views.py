@@ -116,3 +116,22 @@ def test_edge_cases_and_errors():
         render_views(_ellipsoid(), [PARALLEL[0], lg.CentralProjector(eye=(0, 0, 0.5))])
     with pytest.raises(ValueError, match="tolerance must be a number"):
         render_views(_ellipsoid(), PARALLEL, tolerance=0)
+
+
+def test_a_batch_over_the_point_budget_is_rendered_view_by_view(tmp_path, monkeypatch):
+    """The budget counts the samples of all views together: ``render_views``
+    refuses a batch that one view alone would fit; ``animate`` then renders
+    that batch view by view, with the same frames."""
+    from lgraph import _tolerance, animation
+    from lgraph.render.sampling import PointBudgetError
+
+    scene = _ellipsoid()
+    views = PARALLEL[:4]
+    want = lg.animate(scene, views, tmp_path / "a.gif", width=96, progress=False, workers=1)
+    one = max(sum(len(s.xy) for s in d.strokes) for d in render_views(scene, views))
+    monkeypatch.setattr(_tolerance, "MAX_POINTS", 2 * one)  # one view fits, four do not
+    with pytest.raises(PointBudgetError, match="sample points"):
+        render_views(scene, views)
+    got = lg.animate(scene, views, tmp_path / "b.gif", width=96, progress=False, workers=1)
+    assert got.read_bytes() == want.read_bytes()
+    assert animation.BATCH_FRAMES >= len(views)  # the four views were one batch

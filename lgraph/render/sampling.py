@@ -23,7 +23,7 @@ from .views import Views, as_views
 if TYPE_CHECKING:
     from ..curves import CurveBatch
 
-__all__ = ["Part", "Samples", "check_points", "merge", "refine"]
+__all__ = ["Part", "PointBudgetError", "Samples", "check_points", "merge", "refine"]
 
 
 class Part(NamedTuple):
@@ -45,35 +45,38 @@ class Samples:
     (grouped quadric hiding it, or -1) and ``fresh`` (not yet tested).
     """
 
-    def __init__(self, batches: list[tuple], projector: Projector | Views) -> None:
-        # batches: (node, batch, transform) or (node, batch, transform, view)
-        sizes = [len(b[1]) for b in batches]
+    def __init__(
+        self, batches: list[tuple[int, CurveBatch, Transform, int]], projector: Projector | Views
+    ) -> None:
+        # (node, batch, transform, view); the view may be left out (view 0)
+        entries = [(n, b, tr, v[0] if v else 0) for n, b, tr, *v in batches]
+        sizes = [len(b) for _, b, _, _ in entries]
         firsts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int).tolist()
-        self.parts = [Part(b[1], b[0], b[2], f) for b, f in zip(batches, firsts)]
+        self.parts = [Part(b, n, tr, f) for (n, b, tr, _), f in zip(entries, firsts)]
         self.views = as_views(projector)
         #: per curve: its view (index into ``views.projectors``)
-        self.view = np.repeat([b[3] if len(b) > 3 else 0 for b in batches], sizes)
+        self.view = np.repeat([v for _, _, _, v in entries], sizes)
         # a batch drawn in several views (the same node's cached family) is one
         # source: evaluated once for all its copies
         src: dict[tuple[int, int], int] = {}
         self.src = np.array(
             [src.setdefault((p.node, id(p.batch)), i) for i, p in enumerate(self.parts)]
         )
-        self.part = np.repeat(np.arange(len(batches)), sizes)
+        self.part = np.repeat(np.arange(len(entries)), sizes)
         #: per curve: its source part, and its index within that part's batch
         self.csrc = self.src[self.part]
         self.lcid = np.arange(sum(sizes)) - np.repeat(firsts, sizes)
-        self.t0 = np.concatenate([b[1].t0 for b in batches])
-        self.t1 = np.concatenate([b[1].t1 for b in batches])
-        self.closed = np.concatenate([b[1].closed for b in batches])
-        self.owner = np.repeat([-1 if b[1].surface is None else b[0] for b in batches], sizes)
-        self.kind = np.repeat([OFF if b[1].surface is None else b[1].own for b in batches], sizes)
-        self.kind = self.kind.astype(np.int8)
+        self.t0 = np.concatenate([b.t0 for _, b, _, _ in entries])
+        self.t1 = np.concatenate([b.t1 for _, b, _, _ in entries])
+        self.closed = np.concatenate([b.closed for _, b, _, _ in entries])
+        self.owner = np.repeat([-1 if b.surface is None else n for n, b, _, _ in entries], sizes)
+        kinds = [OFF if b.surface is None else b.own for _, b, _, _ in entries]
+        self.kind = np.repeat(kinds, sizes).astype(np.int8)
         #: per curve, its exact ellipse in world coordinates (NaN: none), or None
         self.ellipses = None
-        if any(b[1].ellipses is not None for b in batches):
+        if any(b.ellipses is not None for _, b, _, _ in entries):
             self.ellipses = np.full((len(self.t0), 3, 3), np.nan)
-            for (_, b, tr, *_), first in zip(batches, firsts):
+            for (_, b, tr, _), first in zip(entries, firsts):
                 if b.ellipses is not None:
                     e = b.ellipses @ tr.matrix.T  # centre and both axes as vectors
                     e[:, 0] += tr.offset  # the centre moves with the offset too
@@ -86,7 +89,7 @@ class Samples:
         self.no_uv: set[int] = set()  # sources whose curves have no parameters
         n = len(self.t)
         self.xyz, self.uv = np.empty((n, 3)), np.full((n, 2), np.nan)
-        for p, ((_, b, tr, *_), first) in enumerate(zip(batches, firsts)):
+        for p, ((_, b, tr, _), first) in enumerate(zip(entries, firsts)):
             rows = slice(first * k, (first + len(b)) * k)
             if self.src[p] != p:  # the same batch in an earlier view: its samples
                 src = slice(firsts[self.src[p]] * k, (firsts[self.src[p]] + len(b)) * k)
@@ -243,15 +246,18 @@ def refine(s: Samples, abs_tol: float | np.ndarray, settled: np.ndarray | None =
         check = new[:-1] | new[1:]
 
 
+class PointBudgetError(ValueError):
+    """A render would hold more than ``MAX_POINTS`` sample points."""
+
+
 def check_points(n: int, refining: bool = False) -> None:
     """Refuse, before any work, a sampling that would hold more than
     ``MAX_POINTS`` points (the render's memory budget).
 
     >>> check_points(10)
-    >>> check_points(10**9)
+    >>> check_points(10**9)  # doctest: +IGNORE_EXCEPTION_DETAIL
     Traceback (most recent call last):
-    ...
-    ValueError: Scene.render: the curves need 1000000000 sample points; the limit is ...
+    PointBudgetError: Scene.render: the curves need 1000000000 sample points; ...
     """
     if n > tol.MAX_POINTS:
         why = (
@@ -259,7 +265,7 @@ def check_points(n: int, refining: bool = False) -> None:
             if refining
             else "draw fewer lines (lower the counts of the families)"
         )
-        raise ValueError(
+        raise PointBudgetError(
             f"Scene.render: the curves need {n} sample points; the limit is "
             f"{tol.MAX_POINTS} (lgraph._tolerance.MAX_POINTS); {why}"
         )
