@@ -102,16 +102,30 @@ def _strokes(
     size = np.where(joined, np.maximum(extent, extent[partner]), extent)
     run_view = s.view[run_cid]
     keep &= (size > np.asarray(min_extent)[run_view]) & (joined | (ends - starts >= 2))
+    rows = np.flatnonzero(keep)
+    # every kept run's samples (a joined run: then its curve's first run, less
+    # the shared sample) gathered in one go, then cut into strokes
+    a, b = starts[rows], ends[rows]
+    pr = partner[rows]
+    fa = np.where(pr >= 0, starts[pr] + 1, 0)
+    fb = np.where(pr >= 0, ends[pr], 0)
+    seg_start = np.column_stack([a, fa]).ravel()
+    seg_len = np.column_stack([b - a, fb - fa]).ravel()
+    total = np.cumsum(seg_len)
+    n_idx = int(total[-1]) if len(total) else 0
+    idx = np.repeat(seg_start - (total - seg_len), seg_len) + np.arange(n_idx)
+    ends_k = total[1::2].tolist()  # where each stroke's samples end
+    bounds = list(zip([0, *ends_k[:-1]], ends_k))
+    xy, xyz, uv = ([g[i:j] for i, j in bounds] for g in (s.xy[idx], s.xyz[idx], s.uv[idx]))
     styles: dict[tuple[int, str], Style] = {}
     out: list[list[Stroke]] = [[] for _ in min_extent]
-    rows = np.flatnonzero(keep)
-    starts_l, ends_l, partner_l = starts.tolist(), ends.tolist(), partner.tolist()
-    for r, c, p, hid, v in zip(
-        rows.tolist(),
-        run_cid[rows].tolist(),
-        s.part[run_cid[rows]].tolist(),
-        run_hidden[rows].tolist(),
-        run_view[rows].tolist(),
+    for k, (c, p, hid, v) in enumerate(
+        zip(
+            run_cid[rows].tolist(),
+            s.part[run_cid[rows]].tolist(),
+            run_hidden[rows].tolist(),
+            run_view[rows].tolist(),
+        )
     ):
         batch, node, _, first_id = s.parts[p]
         names = batch.curve_family
@@ -119,17 +133,11 @@ def _strokes(
         style = styles.get((p, family))
         if style is None:
             style = styles[p, family] = batch.style or nodes[node].style_for(family)
-        a, b = starts_l[r], ends_l[r]
-        if partner_l[r] >= 0:
-            fa, fb = starts_l[partner_l[r]], ends_l[partner_l[r]]
-            sel = np.concatenate([np.arange(a, b), np.arange(fa + 1, fb)])
-        else:
-            sel = slice(a, b)
         out[v].append(
             Stroke(
-                xy=s.xy[sel],
-                xyz=s.xyz[sel],
-                uv=None if s.src[p] in s.no_uv else s.uv[sel],
+                xy=xy[k],
+                xyz=xyz[k],
+                uv=None if s.src[p] in s.no_uv else uv[k],
                 visible=not hid,
                 family=family,
                 surface=batch.surface,

@@ -18,7 +18,7 @@ from collections.abc import Iterator, Sequence
 
 import numpy as np
 
-from ..projectors import CentralProjector, Projector, linear_map, unit_rays
+from ..projectors import CentralProjector, Projector, unit_rays
 
 __all__ = ["Views", "as_views"]
 
@@ -73,11 +73,11 @@ class Views:
         if isinstance(view, (int, np.integer)):
             return self.projectors[view].project(xyz)
         if self._kind == "parallel":
-            return linear_map(xyz, self._plane[view])
+            return _linear_map_rows(xyz, self._plane, view, 2)
         if self._kind == "central":
-            q = linear_map(xyz - self._eye[view], self._basis[view])
+            q = _linear_map_rows(xyz - _rows(self._eye, view), self._basis, view, 3)
             with np.errstate(divide="ignore", invalid="ignore"):
-                return q[:, :2] * (-self._distance[view][:, None] / q[:, 2:])
+                return q[:, :2] * (-self._distance[view] / q[:, 2])[:, None]
         out = np.empty((len(xyz), 2))
         for k, rows in self.groups(view):
             out[rows] = self.projectors[k].project(xyz[rows])
@@ -93,9 +93,9 @@ class Views:
         if isinstance(view, (int, np.integer)):
             return self.projectors[view].rays(xyz)
         if self._kind == "parallel":
-            return self._toward[view], np.full(len(xyz), np.inf)
+            return _rows(self._toward, view), np.full(len(xyz), np.inf)
         if self._kind == "central":
-            return unit_rays(self._eye[view] - xyz)
+            return unit_rays(_rows(self._eye, view) - xyz)
         dirs, smax = np.empty((len(xyz), 3)), np.empty(len(xyz))
         for k, rows in self.groups(view):
             dirs[rows], smax[rows] = self.projectors[k].rays(xyz[rows])
@@ -109,6 +109,26 @@ class Views:
             if isinstance(p, CentralProjector):
                 out[rows] = p.depth(xyz[rows]) <= 0
         return out
+
+
+def _rows(table: np.ndarray, view: np.ndarray) -> np.ndarray:
+    """``table[view]`` for a small ``(k, 3)`` table, gathered column by column
+    (several times faster than one fancy index of the rows)."""
+    out = np.empty((len(view), table.shape[1]))
+    for i in range(table.shape[1]):
+        out[:, i] = table[:, i][view]
+    return out
+
+
+def _linear_map_rows(xyz: np.ndarray, m: np.ndarray, view: np.ndarray, k: int) -> np.ndarray:
+    """``linear_map(xyz[i], m[view[i]])`` for every row (``m``: ``(views, 3,
+    k)``), term by term as :func:`lgraph.projectors.linear_map` does, so
+    that each row gets the bits of its view alone."""
+    x, y, z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+    out = np.empty((len(xyz), k))
+    for j in range(k):
+        out[:, j] = x * m[:, 0, j][view] + y * m[:, 1, j][view] + z * m[:, 2, j][view]
+    return out
 
 
 def as_views(projector: Projector | Views) -> Views:
