@@ -180,6 +180,11 @@ class CurveBatch:
     ``x(t) = c + p cos t + q sin t`` with rows ``c, p, q`` (local
     coordinates), as the parameter lines of an ellipsoid are; the renderer
     then finds where it crosses its own surface's contour in closed form.
+
+    ``kernel`` (optional, ``(f, params)``) says that ``evaluate(idx, t)`` is
+    ``f(params[idx], t)``, with one row of ``params`` a curve: batches with
+    the same ``f`` (one object) are evaluated in one call, their ``params``
+    stacked (the contours of one surface in many views, say).
     """
 
     family: str
@@ -192,6 +197,7 @@ class CurveBatch:
     style: Any = None
     curve_family: tuple[str, ...] | None = None
     ellipses: np.ndarray | None = None
+    kernel: tuple[Callable[[np.ndarray, np.ndarray], Any], np.ndarray] | None = None
 
     def __attrs_post_init__(self) -> None:
         object.__setattr__(self, "t0", np.asarray(self.t0, dtype=float).ravel())
@@ -203,6 +209,11 @@ class CurveBatch:
                     f"CurveBatch: ellipses must have shape ({len(self.t0)}, 3, 3), got {e.shape}"
                 )
             object.__setattr__(self, "ellipses", e)
+        if self.kernel is not None and len(self.kernel[1]) != len(self.t0):
+            raise ValueError(
+                f"CurveBatch: kernel parameters must have {len(self.t0)} rows (one a curve), "
+                f"got {len(self.kernel[1])}"
+            )
         if self.closed is None:
             object.__setattr__(self, "closed", np.zeros(len(self.t0), bool))
         else:

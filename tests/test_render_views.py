@@ -135,3 +135,38 @@ def test_a_batch_over_the_point_budget_is_rendered_view_by_view(tmp_path, monkey
     got = lg.animate(scene, views, tmp_path / "b.gif", width=96, progress=False, workers=1)
     assert got.read_bytes() == want.read_bytes()
     assert animation.BATCH_FRAMES >= len(views)  # the four views were one batch
+
+
+def test_contours_of_all_views_are_evaluated_in_one_call(monkeypatch):
+    """An ellipsoid's exact contour differs in every view, but all of them are
+    ellipses evaluated by the surface's one kernel: the renderer stacks their
+    parameters and calls it as often for five views as for one."""
+    from lgraph.surfaces import quadrics
+
+    calls = []
+    real = quadrics._EllipseKernel.__call__
+
+    def counting(self, params, t):
+        calls.append(len(params))
+        return real(self, params, t)
+
+    monkeypatch.setattr(quadrics._EllipseKernel, "__call__", counting)
+    scene = _ellipsoid()
+    scene.render(PARALLEL[0])
+    one = len(calls)
+    calls.clear()
+    together = render_views(scene, PARALLEL)
+    assert one > 0 and len(calls) <= one
+    assert sum(calls) >= len(PARALLEL) * 33  # every view's contour was sampled
+    for view, d in zip(PARALLEL, together):
+        _assert_same(scene.render(view), d)
+
+
+def test_a_kernel_needs_one_row_a_curve():
+    from lgraph.curves import CurveBatch
+
+    def f(params, t):
+        return np.zeros((len(t), 3)), None
+
+    with pytest.raises(ValueError, match="kernel parameters must have 2 rows"):
+        CurveBatch("c", [0, 0], [1, 1], lambda i, t: f(None, t), kernel=(f, np.zeros((3, 1))))

@@ -137,7 +137,7 @@ def _strokes(
             Stroke(
                 xy=xy[k],
                 xyz=xyz[k],
-                uv=None if s.src[p] in s.no_uv else uv[k],
+                uv=None if s.group[p] in s.no_uv else uv[k],
                 visible=not hid,
                 family=family,
                 surface=batch.surface,

@@ -228,6 +228,13 @@ class Occlusion:
         view) contains the point."""
         if self.views.k == 1 or view is None:
             return self.grids[0].pairs(xy)
+        if self.nq == 1:  # one box a view: each point against its view's box
+            box = np.array([g.box[0] for g in self.grids])
+            x, y = xy[:, 0], xy[:, 1]
+            inside = (x >= box[:, 0][view]) & (x <= box[:, 2][view])
+            inside &= (y >= box[:, 1][view]) & (y <= box[:, 3][view])
+            pt = np.flatnonzero(inside)
+            return pt, np.zeros(len(pt), dtype=np.int64)
         pts, qs = [], []
         for k, rows in self.views.groups(view):
             pt, q = self.grids[k].pairs(xy[rows])

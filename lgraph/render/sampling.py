@@ -57,15 +57,43 @@ class Samples:
         #: per curve: its view (index into ``views.projectors``)
         self.view = np.repeat([v for _, _, _, v in entries], sizes)
         # a batch drawn in several views (the same node's cached family) is one
-        # source: evaluated once for all its copies
+        # source: the same curves in every view
         src: dict[tuple[int, int], int] = {}
         self.src = np.array(
             [src.setdefault((p.node, id(p.batch)), i) for i, p in enumerate(self.parts)]
         )
+        # evaluation groups: a source, or the sources whose batches share a
+        # kernel (the contours of one surface in every view): one call each
+        group: dict[tuple[int, int], int] = {}
+        self.group = np.array(
+            [
+                group.setdefault(
+                    (p.node, id(p.batch.kernel[0] if p.batch.kernel else p.batch)), int(j)
+                )
+                for p, j in zip(self.parts, self.src)
+            ]
+        )
         self.part = np.repeat(np.arange(len(entries)), sizes)
-        #: per curve: its source part, and its index within that part's batch
-        self.csrc = self.src[self.part]
+        #: per curve: its evaluation group and its row there (its index in its
+        #: batch, or in its group's stacked kernel parameters)
+        self.cgroup = self.group[self.part]
         self.lcid = np.arange(sum(sizes)) - np.repeat(firsts, sizes)
+        self.kparams: dict[int, np.ndarray] = {}  # group -> stacked kernel parameters
+        for g in np.unique(self.group).tolist():
+            parts = [i for i in np.flatnonzero(self.group == g).tolist() if self.src[i] == i]
+            if self.parts[g].batch.kernel is None or len(parts) < 2:
+                continue
+            rows = [self.parts[i].batch.kernel[1] for i in parts]
+            self.kparams[g] = np.concatenate(rows)
+            offset = np.cumsum([0, *map(len, rows[:-1])])
+            for i, o in zip(parts, offset.tolist()):
+                first, n = self.parts[i].first, len(self.parts[i].batch)
+                self.lcid[first : first + n] += o
+            for i in np.flatnonzero(self.group == g).tolist():  # repeated batches: their source's
+                if self.src[i] != i:
+                    first, n = self.parts[i].first, len(self.parts[i].batch)
+                    s0 = self.parts[self.src[i]].first
+                    self.lcid[first : first + n] = self.lcid[s0 : s0 + n]
         self.t0 = np.concatenate([b.t0 for _, b, _, _ in entries])
         self.t1 = np.concatenate([b.t1 for _, b, _, _ in entries])
         self.closed = np.concatenate([b.closed for _, b, _, _ in entries])
@@ -86,11 +114,24 @@ class Samples:
         self.cid = np.repeat(np.arange(len(self.t0)), k)
         frac = np.linspace(0.0, 1.0, k)
         self.t = (self.t0[:, None] + (self.t1 - self.t0)[:, None] * frac).ravel()
-        self.no_uv: set[int] = set()  # sources whose curves have no parameters
+        self.no_uv: set[int] = set()  # groups whose curves have no parameters
         n = len(self.t)
         self.xyz, self.uv = np.empty((n, 3)), np.full((n, 2), np.nan)
+        for g, params in self.kparams.items():  # stacked kernels: one call a group
+            batch, _, tr, _ = self.parts[g]
+            rows = np.concatenate(
+                [
+                    np.arange(part.first * k, (part.first + len(part.batch)) * k)
+                    for i, part in enumerate(self.parts)
+                    if self.group[i] == g and self.src[i] == i
+                ]
+            )
+            x, self.uv[rows] = batch.kernel[0](params[self.lcid[self.cid[rows]]], self.t[rows])
+            self.xyz[rows] = x if tr.is_identity else tr.apply(x)
         for p, ((_, b, tr, _), first) in enumerate(zip(entries, firsts)):
             rows = slice(first * k, (first + len(b)) * k)
+            if self.group[p] in self.kparams and self.src[p] == p:
+                continue  # done above
             if self.src[p] != p:  # the same batch in an earlier view: its samples
                 src = slice(firsts[self.src[p]] * k, (firsts[self.src[p]] + len(b)) * k)
                 self.xyz[rows], self.uv[rows] = self.xyz[src], self.uv[src]
@@ -98,7 +139,7 @@ class Samples:
             x, u = family_cache.derived(b, ("initial samples", k), _Initial(b, self.t[rows], k))
             self.xyz[rows] = x if tr.is_identity else tr.apply(x)
             if u is None:
-                self.no_uv.add(int(self.src[p]))
+                self.no_uv.add(int(self.group[p]))
             else:
                 self.uv[rows] = u
         self.xy = self.views.project(self.xyz, self.view[self.cid])
@@ -114,7 +155,7 @@ class Samples:
         ``cid`` at ``t``; one call per batch involved (a batch drawn in
         several views is called once)."""
         n = len(t)
-        src = self.csrc[cid]
+        src = self.cgroup[cid]
         xyz, uv = np.empty((n, 3)), np.full((n, 2), np.nan)
         if not n:
             return xyz, uv, None if project is None else np.empty((n, 2))
@@ -126,12 +167,16 @@ class Samples:
             cuts = np.flatnonzero(ps[1:] != ps[:-1]) + 1
         for lo, hi in zip([0, *cuts.tolist()], [*cuts.tolist(), n]):
             rows = slice(lo, hi) if order is None else order[lo:hi]
-            batch, _, transform, _ = self.parts[ps[lo]]
-            x, u = batch.evaluate(self.lcid[cid[rows]], t[rows])
+            g = int(ps[lo])
+            batch, _, transform, _ = self.parts[g]
+            if g in self.kparams:
+                x, u = batch.kernel[0](self.kparams[g][self.lcid[cid[rows]]], t[rows])
+            else:
+                x, u = batch.evaluate(self.lcid[cid[rows]], t[rows])
             x = np.asarray(x, dtype=float).reshape(-1, 3)
             xyz[rows] = x if transform.is_identity else transform.apply(x)
             if u is None:
-                self.no_uv.add(int(ps[lo]))
+                self.no_uv.add(g)
             else:
                 uv[rows] = np.asarray(u, float).reshape(-1, 2)
         return xyz, uv, None if project is None else self.views.project(xyz, self.view[cid])

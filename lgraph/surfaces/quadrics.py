@@ -17,6 +17,7 @@ True
 
 from __future__ import annotations
 
+import weakref
 from typing import Any
 
 import attrs
@@ -27,6 +28,7 @@ from .._validate import as_number, finite_positive
 from ..curves import CurveBatch
 from ..geometry.vectors import cross3
 from ._base import CONTOUR, Domain, Surface
+from ._memo import per_surface
 from ._quadric_ray import quadric_ray_hits
 
 __all__ = ["Quadric", "Ellipsoid", "Sphere"]
@@ -170,16 +172,40 @@ def _affine_circle_batch(
     radius: float,
     to_x: np.ndarray,
 ) -> CurveBatch:
-    """Closed curve ``x(t) = to_x @ (center + radius (cos t e1 + sin t e2))``."""
+    """Closed curve ``x(t) = to_x @ (center + radius (cos t e1 + sin t e2))``,
+    i.e. the ellipse ``c + p cos t + q sin t``; its evaluation is the
+    surface's ellipse kernel (one call for the contours of all views)."""
+    kernel = per_surface(surface, "ellipse kernel", lambda: _EllipseKernel(surface))
+    params = np.concatenate([to_x @ center, radius * (to_x @ e1), radius * (to_x @ e2)])[None]
 
     def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        y = center + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
-        x = y @ to_x.T
-        return x, surface.uv_of(x)
+        return kernel(params[idx], t)
 
     return CurveBatch(
-        "contour", [0.0], [2 * np.pi], evaluate, closed=True, surface=surface, own=CONTOUR
+        "contour",
+        [0.0],
+        [2 * np.pi],
+        evaluate,
+        closed=True,
+        surface=surface,
+        own=CONTOUR,
+        kernel=(kernel, params),
     )
+
+
+class _EllipseKernel:
+    """Points ``c + p cos t + q sin t`` (rows ``c, p, q`` of ``params``) on
+    ``surface``, with their surface parameters."""
+
+    def __init__(self, surface: Quadric) -> None:
+        # weak: the kernel is kept per surface (``per_surface``), and its batches
+        # hold the surface while they are evaluated
+        self.surface = weakref.ref(surface)
+
+    def __call__(self, params: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        x = params[:, 0:3] + np.cos(t)[:, None] * params[:, 3:6]
+        x += np.sin(t)[:, None] * params[:, 6:9]
+        return x, self.surface().uv_of(x)
 
 
 def _plane_basis(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
