@@ -177,8 +177,15 @@ def _batches(views: list[Projector]) -> list[list[Projector]]:
 
 
 def _flat(batches: Iterator[list[Any]]) -> Iterator[Any]:
-    for frames in batches:
-        yield from frames
+    """The frames of the batches, in order; closing it closes ``batches``
+    (which cancels the batches not yet started)."""
+    try:
+        for frames in batches:
+            yield from frames
+    finally:
+        close = getattr(batches, "close", None)
+        if close is not None:
+            close()
 
 
 def _render_chunk(token: str, data: bytes, views: list[Projector]) -> list[Any]:
