@@ -56,7 +56,10 @@ def _assert_same(alone: lg.Drawing, together: lg.Drawing) -> None:
         # the same samples; a root located by SIMD transcendental functions may
         # differ in its last bits with the point's place in an array
         assert np.allclose(a.xy, b.xy, rtol=0, atol=1e-11 * extent)
+        assert np.allclose(a.xyz, b.xyz, rtol=0, atol=1e-11 * extent)
         assert (a.uv is None) == (b.uv is None)
+        if a.uv is not None:  # parameters: angles and lengths of order one
+            assert np.allclose(a.uv, b.uv, rtol=0, atol=1e-9, equal_nan=True)
     assert [(p.text, p.visible, p.anchor) for p in alone.labels] == [
         (p.text, p.visible, p.anchor) for p in together.labels
     ]
