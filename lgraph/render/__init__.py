@@ -18,11 +18,9 @@
 
 from __future__ import annotations
 
-import functools
 import math
 import warnings
 from collections.abc import Sequence
-from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 import attrs
@@ -366,8 +364,7 @@ def _with_marks(
 
         if vis is None:
             vis, view = Occlusion(nodes, projector), 0
-        test = SimpleNamespace(hidden=functools.partial(vis.hidden, view=view))
-        placed, dots = place_marks(labels, points, projector, test, hidden_lines, hidden_style)
+        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, hidden_style, view)
         strokes = strokes + dots
     return Drawing(strokes=strokes, page=page, labels=placed)
 

@@ -39,7 +39,12 @@ def auto_anchor(dx: float, dy: float) -> str:
 
 
 def _placed(
-    kind: str, marks: tuple[Any, ...], projector: Projector, occlusion: Any, hidden_lines: bool
+    kind: str,
+    marks: tuple[Any, ...],
+    projector: Projector,
+    occlusion: Any,
+    hidden_lines: bool,
+    view: int,
 ) -> list[tuple[Any, np.ndarray, np.ndarray, bool]]:
     """``(mark, xyz, xy, hidden)`` of the marks that are drawn, in order."""
     if not marks:
@@ -47,7 +52,7 @@ def _placed(
     xyz = np.array([m.at for m in marks], dtype=float)
     xy = _project(kind, xyz, projector)
     n = len(xyz)
-    hid = occlusion.hidden(xyz, xy, np.full(n, -1), np.full(n, OFF, dtype=np.int8))
+    hid = occlusion.hidden(xyz, xy, np.full(n, -1), np.full(n, OFF, dtype=np.int8), view=view)
     out = []
     for m, p, q, h in zip(marks, xyz, xy, hid.tolist()):
         h = h and not m.always
@@ -74,10 +79,12 @@ def place_marks(
     occlusion: Any,
     hidden_lines: bool,
     hidden_style: Style,
+    view: int = 0,
 ) -> tuple[list[PlacedLabel], list[Stroke]]:
-    """Placed labels and point strokes of a scene's (world-coordinate) marks."""
+    """Placed labels and point strokes of a scene's (world-coordinate) marks,
+    seen by ``projector``, view ``view`` of ``occlusion``."""
     placed: list[PlacedLabel] = []
-    for lab, p, q, h in _placed("label", labels, projector, occlusion, hidden_lines):
+    for lab, p, q, h in _placed("label", labels, projector, occlusion, hidden_lines, view):
         anchor = lab.anchor
         if anchor == "auto":
             step = 1e-6 * max(1.0, float(np.linalg.norm(p)))
@@ -87,7 +94,7 @@ def place_marks(
         style = Style(color=hidden_style.color if h else color)
         placed.append(PlacedLabel(lab.text, q, p, not h, anchor, lab.offset, lab.size, style))
     strokes: list[Stroke] = []
-    for pt, p, q, h in _placed("point", points, projector, occlusion, hidden_lines):
+    for pt, p, q, h in _placed("point", points, projector, occlusion, hidden_lines, view):
         base = hidden_style if h else (pt.style or Style())
         style = Style(color=base.color, width=pt.size)
         strokes.append(

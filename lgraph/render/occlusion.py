@@ -89,6 +89,26 @@ def _box(projector: Projector, corners: np.ndarray) -> tuple[np.ndarray, np.ndar
     return pc.min(axis=0), pc.max(axis=0)
 
 
+def _padded(boxes: list) -> np.ndarray:
+    """Boxes ``((x0, y0), (x1, y1))`` or None (unbounded), one a view, as an
+    array ``(views, 4)`` grown by 1e-9 of their size (ties go inside)."""
+    lim = np.array(
+        [(-np.inf, -np.inf, np.inf, np.inf) if b is None else (*b[0], *b[1]) for b in boxes]
+    )
+    pad = 1e-9 * (np.maximum(lim[:, 2] - lim[:, 0], lim[:, 3] - lim[:, 1]) + 1.0)
+    pad = np.where(np.isfinite(pad), pad, 0.0)
+    return lim + np.column_stack([-pad, -pad, pad, pad])
+
+
+def _inside(xy: np.ndarray, boxes: np.ndarray, view: np.ndarray) -> np.ndarray:
+    """Which points ``xy`` lie in the box ``boxes[view]`` of their view (the
+    box's sides gathered column by column: a row gather is much slower)."""
+    x, y = xy[:, 0], xy[:, 1]
+    inside = (x >= boxes[:, 0][view]) & (x <= boxes[:, 2][view])
+    inside &= (y >= boxes[:, 1][view]) & (y <= boxes[:, 3][view])
+    return inside
+
+
 class _BoxGrid:
     """A uniform grid over the projected boxes ``(x0, y0, x1, y1)`` of the
     grouped quadrics in one view: the (point, quadric) pairs to test."""
@@ -199,6 +219,9 @@ class Occlusion:
         first = twin_groups(nodes)
         self.twins = {j: np.flatnonzero(first == first[j]) for j, _, _, _ in self.items}
         self._setup_grid(quads)
+        #: per asked surface, its padded box ``(x0, y0, x1, y1)`` in every view
+        #: (unbounded where it has none)
+        self._item_boxes = {j: _padded(boxes) for j, _, _, boxes in self.items}
         #: relative cost of testing one point (1: the grouped quadric test)
         self.cost_per_point = 1.0 + sum(it[1].hit_cost for it in self.items)
         #: fixed cost of one visibility test call
@@ -220,6 +243,8 @@ class Occlusion:
             _BoxGrid(np.array([[*q[1][k][0], *q[1][k][1]] for q in quads]))
             for k in range(self.views.k)
         ]
+        #: one quadric: its (padded) box in every view, ``(views, 4)``
+        self._quadric_boxes = np.array([g.box[0] for g in self.grids])
 
     def _quadric_pairs(
         self, xy: np.ndarray, view: np.ndarray | None = None
@@ -229,11 +254,7 @@ class Occlusion:
         if self.views.k == 1 or view is None:
             return self.grids[0].pairs(xy)
         if self.nq == 1:  # one box a view: each point against its view's box
-            box = np.array([g.box[0] for g in self.grids])
-            x, y = xy[:, 0], xy[:, 1]
-            inside = (x >= box[:, 0][view]) & (x <= box[:, 2][view])
-            inside &= (y >= box[:, 1][view]) & (y <= box[:, 3][view])
-            pt = np.flatnonzero(inside)
+            pt = np.flatnonzero(_inside(xy, self._quadric_boxes, view))
             return pt, np.zeros(len(pt), dtype=np.int64)
         pts, qs = [], []
         for k, rows in self.views.groups(view):
@@ -303,24 +324,14 @@ class Occlusion:
                 if box is None:
                     yield j, surf, inv, np.arange(len(xy))
                     continue
-                (x0, y0), (x1, y1) = box
-                pad = 1e-9 * (max(x1 - x0, y1 - y0) + 1.0)
-                a, b = np.searchsorted(xs, [x0 - pad, x1 + pad])
+                x0, y0, x1, y1 = self._item_boxes[j][0]
+                a, b = np.searchsorted(xs, [x0, x1])
                 idx = order[a:b]
                 y = xy[idx, 1]
-                yield j, surf, inv, idx[(y >= y0 - pad) & (y <= y1 + pad)]
+                yield j, surf, inv, idx[(y >= y0) & (y <= y1)]
             return
-        x, y = xy[:, 0], xy[:, 1]
-        for j, surf, inv, boxes in self.items:
-            lim = np.array(
-                [(-np.inf, -np.inf, np.inf, np.inf) if b is None else (*b[0], *b[1]) for b in boxes]
-            )
-            pad = 1e-9 * (np.maximum(lim[:, 2] - lim[:, 0], lim[:, 3] - lim[:, 1]) + 1.0)
-            pad = np.where(np.isfinite(pad), pad, 0.0)
-            lim += np.column_stack([-pad, -pad, pad, pad])
-            b = lim[view]
-            inside = (x >= b[:, 0]) & (x <= b[:, 2]) & (y >= b[:, 1]) & (y <= b[:, 3])
-            yield j, surf, inv, np.flatnonzero(inside)
+        for j, surf, inv, _ in self.items:
+            yield j, surf, inv, np.flatnonzero(_inside(xy, self._item_boxes[j], view))
 
     def own_margins(
         self,

@@ -18,7 +18,7 @@ from ..families import cache as family_cache
 from ..geometry.transforms import Transform
 from ..projectors import Projector
 from ..surfaces._base import OFF
-from .views import Views, as_views
+from .views import Views, as_views, runs
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
@@ -78,22 +78,7 @@ class Samples:
         #: batch, or in its group's stacked kernel parameters)
         self.cgroup = self.group[self.part]
         self.lcid = np.arange(sum(sizes)) - np.repeat(firsts, sizes)
-        self.kparams: dict[int, np.ndarray] = {}  # group -> stacked kernel parameters
-        for g in np.unique(self.group).tolist():
-            parts = [i for i in np.flatnonzero(self.group == g).tolist() if self.src[i] == i]
-            if self.parts[g].batch.kernel is None or len(parts) < 2:
-                continue
-            rows = [self.parts[i].batch.kernel[1] for i in parts]
-            self.kparams[g] = np.concatenate(rows)
-            offset = np.cumsum([0, *map(len, rows[:-1])])
-            for i, o in zip(parts, offset.tolist()):
-                first, n = self.parts[i].first, len(self.parts[i].batch)
-                self.lcid[first : first + n] += o
-            for i in np.flatnonzero(self.group == g).tolist():  # repeated batches: their source's
-                if self.src[i] != i:
-                    first, n = self.parts[i].first, len(self.parts[i].batch)
-                    s0 = self.parts[self.src[i]].first
-                    self.lcid[first : first + n] = self.lcid[s0 : s0 + n]
+        self.kparams = self._stack_kernels()
         self.t0 = np.concatenate([b.t0 for _, b, _, _ in entries])
         self.t1 = np.concatenate([b.t1 for _, b, _, _ in entries])
         self.closed = np.concatenate([b.closed for _, b, _, _ in entries])
@@ -147,6 +132,26 @@ class Samples:
         self.cause = np.full(n, -1, dtype=np.int64)
         self.fresh = np.ones(n, dtype=bool)
 
+    def _stack_kernels(self) -> dict[int, np.ndarray]:
+        """For every group of two or more sources sharing a kernel, their
+        kernel parameters stacked (group -> array); each curve's ``lcid``
+        becomes its row there."""
+        stacked = {}
+        for g, rows in runs(self.group):
+            if self.parts[g].batch.kernel is None:
+                continue
+            members = np.arange(len(self.parts))[rows]
+            sources = [int(i) for i in members if self.src[i] == i]
+            if len(sources) < 2:
+                continue
+            params = [self.parts[i].batch.kernel[1] for i in sources]
+            stacked[g] = np.concatenate(params)
+            offset = dict(zip(sources, np.cumsum([0, *map(len, params[:-1])]).tolist()))
+            for i in members.tolist():  # a part's rows follow its source's in the stack
+                first, n = self.parts[i].first, len(self.parts[i].batch)
+                self.lcid[first : first + n] += offset[int(self.src[i])]
+        return stacked
+
     def evaluate(
         self, cid: np.ndarray, t: np.ndarray, project: object
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
@@ -155,19 +160,10 @@ class Samples:
         ``cid`` at ``t``; one call per batch involved (a batch drawn in
         several views is called once)."""
         n = len(t)
-        src = self.cgroup[cid]
         xyz, uv = np.empty((n, 3)), np.full((n, 2), np.nan)
         if not n:
             return xyz, uv, None if project is None else np.empty((n, 2))
-        if len(self.parts) == 1 or not (src != src[0]).any():
-            order, ps, cuts = None, src, np.empty(0, dtype=int)  # one batch
-        else:
-            order = None if np.all(src[1:] >= src[:-1]) else np.argsort(src, kind="stable")
-            ps = src if order is None else src[order]
-            cuts = np.flatnonzero(ps[1:] != ps[:-1]) + 1
-        for lo, hi in zip([0, *cuts.tolist()], [*cuts.tolist(), n]):
-            rows = slice(lo, hi) if order is None else order[lo:hi]
-            g = int(ps[lo])
+        for g, rows in runs(self.cgroup[cid]):
             batch, _, transform, _ = self.parts[g]
             if g in self.kparams:
                 x, u = batch.kernel[0](self.kparams[g][self.lcid[cid[rows]]], t[rows])

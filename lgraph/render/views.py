@@ -20,7 +20,7 @@ import numpy as np
 
 from ..projectors import CentralProjector, Projector, unit_rays
 
-__all__ = ["Views", "as_views"]
+__all__ = ["Views", "as_views", "runs"]
 
 
 class Views:
@@ -54,17 +54,7 @@ class Views:
         if self.k == 1 or view is None:
             yield 0, slice(None)
             return
-        n = len(view)
-        if not n:
-            return
-        if np.all(view[1:] >= view[:-1]):  # samples come sorted by view
-            order, vs = None, view
-        else:
-            order = np.argsort(view, kind="stable")
-            vs = view[order]
-        cuts = (np.flatnonzero(vs[1:] != vs[:-1]) + 1).tolist()
-        for lo, hi in zip([0, *cuts], [*cuts, n]):
-            yield int(vs[lo]), slice(lo, hi) if order is None else order[lo:hi]
+        yield from runs(view)
 
     def project(self, xyz: np.ndarray, view: np.ndarray | None = None) -> np.ndarray:
         """Projections ``(n, 2)`` of points ``xyz``, each in its view."""
@@ -109,6 +99,30 @@ class Views:
             if isinstance(p, CentralProjector):
                 out[rows] = p.depth(xyz[rows]) <= 0
         return out
+
+
+def runs(keys: np.ndarray) -> Iterator[tuple[int, np.ndarray | slice]]:
+    """``(key, rows)`` for every distinct value of the int array ``keys``, in
+    increasing order; ``rows`` is a slice when ``keys`` is sorted (samples
+    come sorted by curve, so by view and by batch), else the row indices in
+    their original order.
+
+    >>> [(k, r) for k, r in runs(np.array([0, 0, 2]))]
+    [(0, slice(0, 2, None)), (2, slice(2, 3, None))]
+    >>> [(k, r.tolist()) for k, r in runs(np.array([1, 0, 1]))]
+    [(0, [1]), (1, [0, 2])]
+    """
+    n = len(keys)
+    if not n:
+        return
+    if np.all(keys[1:] >= keys[:-1]):
+        order, ks = None, keys
+    else:
+        order = np.argsort(keys, kind="stable")
+        ks = keys[order]
+    cuts = (np.flatnonzero(ks[1:] != ks[:-1]) + 1).tolist()
+    for lo, hi in zip([0, *cuts], [*cuts, n]):
+        yield int(ks[lo]), slice(lo, hi) if order is None else order[lo:hi]
 
 
 def _rows(table: np.ndarray, view: np.ndarray) -> np.ndarray:
