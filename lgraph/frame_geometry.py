@@ -70,15 +70,13 @@ def frame_window(
     [-1.0, -1.0, 1.0, 1.0]
     """
     pts = _scene_points(scene)
-    lo = np.full(2, np.inf)
-    hi = np.full(2, -np.inf)
-    for view in views:
-        xy = view.project(pts)
-        xy = xy[np.isfinite(xy).all(axis=1)]
-        if len(xy):
-            lo = np.minimum(lo, xy.min(axis=0))
-            hi = np.maximum(hi, xy.max(axis=0))
-    if not np.isfinite(lo).all():
+    xy = np.concatenate([view.project(pts) for view in views]) if len(views) else pts[:0, :2]
+    x, y = xy[:, 0], xy[:, 1]  # column by column (a reduction along axis 0 is slow)
+    ok = np.isfinite(x) & np.isfinite(y)
+    if ok.any():
+        x, y = x[ok], y[ok]
+        lo, hi = np.array([x.min(), y.min()]), np.array([x.max(), y.max()])
+    else:
         lo, hi = np.zeros(2), np.ones(2)
     size = max(float((hi - lo).max()), 1e-12)
     lo, hi = lo - pad * size, hi + pad * size
