@@ -221,20 +221,34 @@ class Drawing:
             out[i] = np.array(lab.box()) + np.tile(lab.xy * scale + offset, 2)
         return out
 
-    def page_strokes(self) -> Iterator[tuple[np.ndarray, Stroke]]:
-        """Yield ``(points, stroke)`` with points in page units (pt, y upwards).
+    def page_points(self) -> tuple[np.ndarray, list[int], list[Stroke]]:
+        """The strokes of two or more points in drawing order (hidden parts
+        first, then visible ones), with all their points in page units (pt, y
+        upwards) in one array: stroke ``k``'s are ``points[ends[k - 1]:ends[k]]``
+        (from 0 for the first).  Backends draw from it without a list of
+        arrays (:meth:`page_strokes` gives one).
 
-        Strokes come in drawing order: hidden parts first, then visible ones.
+        >>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)))
+        >>> points, ends, strokes = Drawing(strokes=(s, s)).page_points()
+        >>> points.shape, ends, len(strokes)
+        ((4, 2), [2, 4], 2)
         """
         scale, offset, _, _ = self._layout()
         order = sorted(range(len(self.strokes)), key=lambda i: self.strokes[i].visible)
         strokes = [self.strokes[i] for i in order if len(self.strokes[i].xy) >= 2]
         if not strokes:
-            return
-        # one affine map for all points, then views per stroke
+            return np.empty((0, 2)), [], []
+        # one affine map for all points
         pts = np.concatenate([s.xy for s in strokes]) * scale + offset
-        cuts = np.cumsum([len(s.xy) for s in strokes[:-1]]).tolist()
-        yield from zip(np.split(pts, cuts), strokes)
+        return pts, np.cumsum([len(s.xy) for s in strokes]).tolist(), strokes
+
+    def page_strokes(self) -> Iterator[tuple[np.ndarray, Stroke]]:
+        """Yield ``(points, stroke)`` with points in page units (pt, y upwards).
+
+        Strokes come in drawing order: hidden parts first, then visible ones.
+        """
+        pts, ends, strokes = self.page_points()
+        yield from ((pts[a:b], s) for a, b, s in zip([0, *ends], ends, strokes))
 
     # -- selection --------------------------------------------------------
     def select(self, *, family: str | None = None, visible: bool | None = None) -> Drawing:

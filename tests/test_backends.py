@@ -435,14 +435,13 @@ def test_register_backend(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
 def test_real_writer_failing_midway_leaves_nothing(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, fmt: str
 ) -> None:
-    original = Drawing.page_strokes
+    original = Drawing.page_points
 
     def broken(self: Drawing):  # type: ignore[no-untyped-def]
-        it = original(self)
-        yield next(it)
+        original(self)  # the writer is under way: every backend draws from page_points
         raise RuntimeError("midway")
 
-    monkeypatch.setattr(Drawing, "page_strokes", broken)
+    monkeypatch.setattr(Drawing, "page_points", broken)
     with pytest.raises(RuntimeError, match="midway"):
         drawing().save(tmp_path / f"fig.{fmt}")
     assert listing(tmp_path) == []

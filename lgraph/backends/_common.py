@@ -24,6 +24,7 @@ __all__ = [
     "format_points",
     "finite_runs",
     "page_runs",
+    "page_run_points",
     "positive_finite",
 ]
 
@@ -92,6 +93,18 @@ def format_points(points: np.ndarray, template: str, precision: int) -> str:
     return (template.format(f, f) * len(pts)) % tuple(pts.ravel().tolist())
 
 
+def _finite_bounds(points: np.ndarray) -> list[tuple[int, int]]:
+    """``(start, stop)`` of the runs of two or more finite points of ``points``."""
+    pts = np.asarray(points, dtype=float)
+    ok = np.isfinite(pts).all(axis=1)
+    if ok.all():
+        return [(0, len(pts))] if len(pts) >= 2 else []
+    edges = np.diff(np.concatenate([[False], ok, [False]]).astype(np.int8))
+    starts = np.flatnonzero(edges == 1).tolist()
+    stops = np.flatnonzero(edges == -1).tolist()
+    return [(a, b) for a, b in zip(starts, stops) if b - a >= 2]
+
+
 def finite_runs(points: np.ndarray) -> list[np.ndarray]:
     """Split a polyline at non-finite points; keep the runs of two or more points.
 
@@ -100,13 +113,41 @@ def finite_runs(points: np.ndarray) -> list[np.ndarray]:
     [2, 3]
     """
     pts = np.asarray(points, dtype=float)
-    ok = np.isfinite(pts).all(axis=1)
-    if ok.all():
-        return [pts] if len(pts) >= 2 else []
-    edges = np.diff(np.concatenate([[False], ok, [False]]).astype(np.int8))
-    starts = np.flatnonzero(edges == 1)
-    stops = np.flatnonzero(edges == -1)
-    return [pts[a:b] for a, b in zip(starts, stops) if b - a >= 2]
+    return [pts[a:b] for a, b in _finite_bounds(pts)]
+
+
+def page_run_points(drawing: Any) -> tuple[np.ndarray, list[tuple[int, int]], list[Any]]:
+    """Every finite run of every stroke (:func:`page_runs`) at once: the runs'
+    points in page points in one array, ``(start, stop)`` of each run in it,
+    and each run's stroke.  From ``drawing.page_points()``, or from
+    ``drawing.page_strokes()`` for a drawing-like object without it.
+
+    >>> from lgraph.drawing import Drawing, Stroke
+    >>> xy = np.array([[0, 0], [1, 0], [np.nan, 0], [2, 0], [3, 1], [4, 1]], float)
+    >>> pts, bounds, strokes = page_run_points(Drawing((Stroke(xy, np.zeros((6, 3))),)))
+    >>> len(pts), bounds
+    (5, [(0, 2), (2, 5)])
+    """
+    flat = getattr(drawing, "page_points", None)
+    if flat is not None:
+        pts, ends, strokes = flat()
+    else:  # a drawing-like object with only page_strokes() (the documented minimum)
+        items = [(p, s) for p, s in drawing.page_strokes() if len(p) >= 2]
+        pts = np.concatenate([p for p, _ in items]) if items else np.empty((0, 2))
+        ends = np.cumsum([len(p) for p, _ in items]).tolist()
+        strokes = [s for _, s in items]
+    x, y = pts[:, 0], pts[:, 1]  # by column: reductions along axis 0 of (n, 2) are slow
+    if np.isfinite(x).all() and np.isfinite(y).all():
+        # the common case: every stroke is one run (checked at once)
+        return pts, list(zip([0, *ends], ends)), strokes
+    keep, bounds, owners, n = [], [], [], 0
+    for a, b, stroke in zip([0, *ends], ends, strokes):
+        for r0, r1 in _finite_bounds(pts[a:b]):
+            keep.append(pts[a + r0 : a + r1])
+            bounds.append((n, n + r1 - r0))
+            owners.append(stroke)
+            n += r1 - r0
+    return (np.concatenate(keep) if keep else np.empty((0, 2))), bounds, owners
 
 
 def page_runs(drawing: Any) -> Iterator[tuple[np.ndarray, Any]]:
@@ -115,14 +156,8 @@ def page_runs(drawing: Any) -> Iterator[tuple[np.ndarray, Any]]:
     A stroke whose points are all finite gives exactly one run; NaN or inf
     points (breaks) split it.
     """
-    items = list(drawing.page_strokes())
-    if items and np.isfinite(np.concatenate([pts for pts, _ in items])).all():
-        # the common case: every stroke is one run (checked at once)
-        yield from ((pts, stroke) for pts, stroke in items if len(pts) >= 2)
-        return
-    for pts, stroke in items:
-        for run in finite_runs(pts):
-            yield run, stroke
+    pts, bounds, strokes = page_run_points(drawing)
+    yield from ((pts[a:b], s) for (a, b), s in zip(bounds, strokes))
 
 
 def positive_finite(writer: str, name: str, value: Any) -> float:

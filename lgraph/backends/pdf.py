@@ -97,8 +97,8 @@ def write_pdf(
     Parameters
     ----------
     drawing : Drawing
-        The display list; only ``page_size()``, ``page_strokes()`` and
-        ``background`` are used.
+        The display list; only ``page_size()``, ``page_strokes()`` (or
+        ``page_points()``, where it has one) and ``background`` are used.
     path : path-like
         File to write (whatever its suffix).
     compress : bool or int, default True

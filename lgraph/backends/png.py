@@ -38,7 +38,7 @@ from typing import Any
 import numpy as np
 
 from ..dashes import dash_polyline
-from ._common import background_rgb, check_options, page_runs, positive_finite
+from ._common import background_rgb, check_options, page_run_points, positive_finite
 
 __all__ = ["write_png", "render_image", "MAX_SIDE"]
 
@@ -306,32 +306,33 @@ def _plan(
     solid (shorter than a pixel), both in pt; ``unit`` is px per pt."""
     solid_dashes: set[tuple[float, ...]] = set()
     too_wide: set[float] = set()
-    plan, chunks, n = [], [], 0
-    inks: dict[tuple[float, ...], Any] = {}
-    for pts, stroke in page_runs(drawing):
+    pts, bounds, strokes = page_run_points(drawing)
+    how: dict[int, tuple[Any, int, tuple[float, ...] | None]] = {}  # id(style) -> ink, width, dash
+    plan = []
+    for (a, b), stroke in zip(bounds, strokes):
         style = stroke.style
-        ink = inks.get(style.color)
-        if ink is None:
+        ink_lw_dash = how.get(id(style))
+        if ink_lw_dash is None:
             ink = tuple(round(c * 255) for c in style.color)
             ink = (*ink, 255) if mode == "RGBA" else ink[0] if mode == "L" else ink
-            inks[style.color] = ink
-        if style.width * unit >= max_width:
-            # a stroke this wide covers every pixel of the page: one fill, not
-            # thousands of page-sized polygons
-            too_wide.add(style.width)
-            plan.append((0, 0, ink, 0, None))
-            continue
-        pattern = None
-        if style.dash and min(style.dash) * unit < ss:
-            solid_dashes.add(tuple(style.dash))  # shorter than a pixel: drawn solid
-        elif style.dash:
-            pattern = tuple(x * unit for x in style.dash)
-        plan.append((n, n + len(pts), ink, max(1, round(style.width * unit)), pattern))
-        chunks.append(pts)
-        n += len(pts)
+            pattern = None
+            if style.width * unit >= max_width:
+                # a stroke this wide covers every pixel of the page: one fill, not
+                # thousands of page-sized polygons
+                too_wide.add(style.width)
+                lw = 0
+            else:
+                lw = max(1, round(style.width * unit))
+                if style.dash and min(style.dash) * unit < ss:
+                    solid_dashes.add(tuple(style.dash))  # shorter than a pixel: drawn solid
+                elif style.dash:
+                    pattern = tuple(x * unit for x in style.dash)
+            ink_lw_dash = how[id(style)] = (ink, lw, pattern)
+        ink, lw, pattern = ink_lw_dash
+        plan.append((a, b, ink, lw, pattern) if lw else (0, 0, ink, 0, None))
     # mat is diagonal, so this is bit for bit ``pts @ mat + off`` run by run
     # (x * a + y * 0 rounds once, with or without a fused multiply-add)
-    px = np.concatenate(chunks) * mat.diagonal() + off if chunks else np.empty((0, 2))
+    px = pts * mat.diagonal() + off
     return plan, px, too_wide, solid_dashes
 
 
