@@ -51,7 +51,7 @@ import numpy as np
 
 from ._budget import check_frames
 from .drawing import Drawing, Stroke
-from .frame_geometry import PIXEL_TOLERANCE, frame_window, pixel_tolerance
+from .frame_geometry import PIXEL_TOLERANCE, frame_window, pixel_chord
 from .frame_writers import GifWriter, writer_for
 from .page import Page
 from .progress import Progress
@@ -62,7 +62,7 @@ from .render.sampling import PointBudgetError
 __all__ = [
     "animate",
     "frame_window",
-    "pixel_tolerance",
+    "pixel_chord",
     "PARALLEL_MIN_FRAMES",
     "POOL_MIN_SECONDS",
     "BATCH_FRAMES",
@@ -121,7 +121,7 @@ class _Job:
             if len(views) == 1:
                 raise
             # the batch exceeds the point budget that one view may keep to
-            drawings = [self.scene.render(v, **self.render_options) for v in views]
+            drawings = [render_views(self.scene, [v], **self.render_options)[0] for v in views]
         return [self._frame(d, portable) for d in drawings]
 
     def _frame(self, d: Drawing, portable: bool) -> Any:
@@ -414,8 +414,9 @@ def animate(
         ``tolerance`` defaults to ``"pixel"`` for raster frames (GIF, APNG,
         WebP, PNG): they are sampled only as finely as their pixels show,
         every chord within ``PIXEL_TOLERANCE`` (0.25, ``lgraph/_tolerance.py``)
-        pixels of its curve (:func:`~lgraph.frame_geometry.pixel_tolerance`;
-        about 4.6e-4 of the diagonal for 480 px frames, 4.6 times the render's
+        pixels of its curve in every frame
+        (:func:`~lgraph.frame_geometry.pixel_chord`; for a figure that fills a
+        480 px frame, about 4.6e-4 of its diagonal, 4.6 times the render's
         default, 1e-4) -- below the third of a pixel to which the rasterizer
         rounds every point anyway.  Vector frames (PDF, SVG) keep the
         render's default; a number sets the tolerance of every frame.
@@ -460,10 +461,9 @@ def animate(
     if kind == "bytes":
         kind = writer.fmt
     if options.get("tolerance") == "pixel":
+        del options["tolerance"]  # vector frames can be zoomed: the render's default
         if kind == "png":
-            options["tolerance"] = pixel_tolerance(page)
-        else:  # vector frames can be zoomed: the render's default
-            del options["tolerance"]
+            options["chord"] = pixel_chord(page, window)
     gray = isinstance(writer, GifWriter)  # frames in one channel may differ in mode
     job = _Job(scene, window, page, (width, height), kind, options, gray)
 

@@ -5,24 +5,24 @@ Every frame of an animation shows the same window of the projection plane
 (the union, over all views, of the scene's projected extent), so the figure
 keeps its place and scale (:func:`~lgraph.animation.frame_window`).  A
 raster frame of a known size can then be sampled only as finely as its
-pixels show (:func:`pixel_tolerance`, used by ``lg.animate(...,
+pixels show (:func:`pixel_chord`, used by ``lg.animate(...,
 render_options={"tolerance": "pixel"})``).  No derivation of
 docs/mathematics.rst: bounding boxes and a scale factor.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from ._tolerance import MIN_CHORD_TOLERANCE, PIXEL_TOLERANCE
-from .page import Page
+from ._tolerance import PIXEL_TOLERANCE
+from .drawing import Drawing
+from .page import Page, page_layout
 from .projectors import Projector
 
-__all__ = ["frame_window", "pixel_tolerance", "PIXEL_TOLERANCE"]
+__all__ = ["frame_window", "pixel_chord", "PIXEL_TOLERANCE"]
 
 
 #: Grid of parameter values per surface (per side) for the common frame window.
@@ -83,18 +83,24 @@ def frame_window(
     return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
 
 
-def pixel_tolerance(page: Page) -> float:
-    """The render tolerance (a fraction of the figure's diagonal) that keeps
-    every chord within ``PIXEL_TOLERANCE`` (0.25, ``lgraph/_tolerance.py``)
-    pixels of its curve in a raster frame of ``page`` (width and height in
-    pixels), whose inner part shows the common frame window.
+def pixel_chord(page: Page, window: tuple[float, float, float, float]) -> float:
+    """The chord tolerance, a length in the projection plane, that keeps every
+    chord within ``PIXEL_TOLERANCE`` (0.25, ``lgraph/_tolerance.py``) pixels
+    of its curve in a raster frame of ``page`` (width and height in pixels)
+    showing ``window``: a quarter of a pixel at the frame's scale
+    (``render_views(..., chord=...)``; used by ``lg.animate(...,
+    render_options={"tolerance": "pixel"})``).
 
-    The figure lies inside the window, so its diagonal is at most the
-    window's, which spans the page inside its margins.
+    Labels, which take room on the page, only shrink the scale: the chords
+    stay within a quarter pixel.
+
+    A window 4 units wide fills the 451.2 px between the margins, so a pixel
+    is 1/112.8 of a unit:
 
     >>> from lgraph.page import Page
-    >>> round(pixel_tolerance(Page(width=480.0, height=343.0, margin=14.4)) * 1e4, 2)
-    4.55
+    >>> chord = pixel_chord(Page(width=480.0, height=343.0, margin=14.4), (-2.0, -1.0, 2.0, 1.0))
+    >>> round(chord * 112.8, 12)
+    0.25
     """
-    inner = math.hypot(page.width - 2 * page.margin, page.height - 2 * page.margin)
-    return min(0.1, max(MIN_CHORD_TOLERANCE, PIXEL_TOLERANCE / inner))
+    scale = page_layout(Drawing((), page=page, window=window))[0]
+    return PIXEL_TOLERANCE / scale

@@ -16,6 +16,7 @@ import lgraph as lg
 from lgraph import animation
 from lgraph.cli import main as cli_main
 from lgraph.progress import Progress
+from lgraph.render import render_views
 
 
 @pytest.fixture(scope="module")
@@ -45,10 +46,11 @@ def _reference(scene, views, width=WIDTH, hidden_lines=False, **options) -> list
     m = 0.03 * width
     h = max(16, round((width - 2 * m) * (window[3] - window[1]) / (window[2] - window[0]) + 2 * m))
     page = lg.Page(width=float(width), height=float(h), margin=m)
-    options.setdefault("tolerance", animation.pixel_tolerance(page))
+    if "tolerance" not in options:
+        options["chord"] = animation.pixel_chord(page, window)
     out = []
     for v in views:
-        d = scene.render(v, hidden_lines=hidden_lines, **options)
+        (d,) = render_views(scene, [v], hidden_lines=hidden_lines, **options)
         d = lg.Drawing(d.strokes, page=page, window=window, labels=d.labels)
         buf = io.BytesIO()
         d.save(buf, format="png", size=(width, h))
@@ -179,7 +181,7 @@ def _max_sagitta(xy: np.ndarray, r: float) -> float:
 
 
 @pytest.mark.parametrize("width", [120, 480])
-def test_pixel_tolerance_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypatch, width):
+def test_pixel_sampling_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypatch, width):
     # the unit circle seen from above (three ways up): its projection is the
     # unit circle exactly, so each chord's distance from the curve is known
     scene = lg.Scene()
@@ -187,11 +189,11 @@ def test_pixel_tolerance_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypat
     views = [lg.ParallelProjector(direction=(0, 0, 1), up=(np.cos(a), np.sin(a), 0))
              for a in (0.0, 0.7, 2.0)]  # fmt: skip
     seen = []
-    render, render_views = lg.Scene.render, animation.render_views
+    render = lg.Scene.render
 
     def spy(scene, views, **kw):  # frames are rendered in batches of views
         drawings = render_views(scene, views, **kw)
-        seen.extend((kw.get("tolerance"), d) for d in drawings)
+        seen.extend(((kw.get("tolerance"), kw.get("chord")), d) for d in drawings)
         return drawings
 
     monkeypatch.setattr(animation, "render_views", spy)
@@ -204,9 +206,9 @@ def test_pixel_tolerance_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypat
     page = lg.Page(width=float(width), height=float(h), margin=margin)
     px = min((width - 2 * margin) / (window[2] - window[0]),
              (h - 2 * margin) / (window[3] - window[1]))  # fmt: skip
-    want = animation.pixel_tolerance(page)
+    want = (None, animation.pixel_chord(page, window))
     assert [t for t, _ in seen] == [want] * 3
-    assert want > 1e-4  # coarser than the render's default at these sizes
+    assert want[1] * px == pytest.approx(0.25, rel=1e-12)  # a quarter pixel, in every view
     for view, (_, d) in zip(views, seen):
         (c,) = [s.xy for s in d.strokes]
         assert np.allclose(np.hypot(*c.T), 1.0, atol=1e-12)
@@ -223,11 +225,11 @@ def test_pixel_tolerance_keeps_chords_within_a_quarter_pixel(tmp_path, monkeypat
     seen.clear()
     lg.animate(scene, views, tmp_path / "n.gif", width=width, progress=False, workers=1,
                render_options={"tolerance": 1e-4})  # fmt: skip
-    assert [t for t, _ in seen] == [1e-4] * 3
+    assert [t for t, _ in seen] == [(1e-4, None)] * 3
     # vector frames keep the render's default
     seen.clear()
     lg.animate(scene, views, tmp_path / "t.pdf", progress=False, workers=1, render_options=opts)
-    assert [t for t, _ in seen] == [None] * 3
+    assert [t for t, _ in seen] == [(None, None)] * 3
     with pytest.raises(ValueError, match='must be a number or "pixel"'):
         lg.animate(scene, views, tmp_path / "u.gif", progress=False,
                    render_options={"tolerance": "pixels"})  # fmt: skip

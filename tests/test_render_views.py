@@ -173,3 +173,30 @@ def test_a_kernel_needs_one_row_a_curve():
 
     with pytest.raises(ValueError, match="kernel parameters must have 2 rows"):
         CurveBatch("c", [0, 0], [1, 1], lambda i, t: f(None, t), kernel=(f, np.zeros((3, 1))))
+
+
+def test_chord_bounds_the_chords_of_every_view_by_one_length():
+    # the unit circle z = 0 seen along the z axis from the eye (0, 0, 2): its
+    # projection is a circle of radius distance / 2 (1 and 4 here), so each
+    # chord's distance from the curve is r (1 - cos(angle / 2))
+    scene = lg.Scene()
+    scene.add(lg.Curve(lambda t: np.stack([np.cos(t), np.sin(t), 0 * t], -1), 0, 2 * np.pi))
+    views = [lg.CentralProjector(eye=(0, 0, 2), target=(0, 0, z), up=(0, 1, 0)) for z in (0, -6)]
+    chord = 2e-5
+    sags, counts = [], []
+    for d, radius in zip(render_views(scene, views, chord=chord), (1.0, 4.0)):
+        (xy,) = [s.xy for s in d.strokes]
+        assert np.allclose(np.hypot(*xy.T), radius, rtol=1e-12)
+        angle = np.diff(np.unwrap(np.arctan2(xy[:, 1], xy[:, 0])))
+        assert angle.sum() == pytest.approx(2 * np.pi, rel=1e-12)
+        sags.append(float((radius * (1 - np.cos(angle / 2))).max()))
+        counts.append(len(xy))
+    # one length in both views: refined until within it, not far below it,
+    # with about sqrt(4) times the points on the larger circle
+    assert all(chord / 10 < s <= chord for s in sags)
+    assert 1.5 * counts[0] < counts[1] < 2.5 * counts[0]
+    # a relative tolerance scales with each view's figure: the same points
+    same = [len(d.strokes[0].xy) for d in render_views(scene, views, tolerance=5e-6)]
+    assert same[0] == same[1]
+    with pytest.raises(ValueError, match="chord must be a positive finite length"):
+        render_views(scene, views, chord=0)

@@ -215,10 +215,17 @@ def render_views(
     tolerance: float = tol.CHORD_TOLERANCE,
     page: Page | tuple[float, float] | None = None,
     hidden_style: Style | None = None,
+    chord: float | None = None,
 ) -> list[Drawing]:
     """Render ``scene`` from every projector in one pass (the frames of an
     animation): one drawing per projector, the drawing :func:`render` gives
     for it (options as there).
+
+    ``chord``, a length in the projection plane, replaces ``tolerance``: every
+    chord within that distance of its curve in every view (within 1e-9 and
+    0.1 of the view's figure diagonal, the limits of ``tolerance``).  Frames
+    that share one window and scale use it to sample to a fixed fraction of
+    a pixel whatever the size of the figure in each view.
 
     The curves of all views are sampled, tested and split together
     (:mod:`lgraph.render.views`), so the fixed cost of each pipeline stage is
@@ -245,6 +252,16 @@ def render_views(
     if not projectors:
         return []
     options = _checked_options(hidden_lines, tolerance, page, hidden_style)
+    if chord is not None:
+        chord = as_number(chord)
+        if not (
+            isinstance(chord, (int, float))
+            and not isinstance(chord, bool)
+            and math.isfinite(chord)
+            and chord > 0
+        ):
+            raise ValueError(f"render_views: chord must be a positive finite length, got {chord!r}")
+        options = (*options, float(chord))
     try:
         return _render(scene, Views(projectors), *options)
     except NotBatchable:  # e.g. an eye inside a sphere's box in some views only
@@ -285,8 +302,10 @@ def _render(
     tolerance: float,
     page: Page | None,
     hidden_style: Style,
+    chord: float | None = None,
 ) -> list[Drawing]:
-    """The pipeline (module docstring) for every view at once."""
+    """The pipeline (module docstring) for every view at once; chords within
+    ``tolerance`` of each view's figure diagonal, or within ``chord``."""
     nodes = scene.nodes
     first = twin_groups(nodes)
     drawn = [_undrawn(nodes, first, ni) for ni in range(len(nodes))]
@@ -328,7 +347,12 @@ def _render(
     for k, rows in views.groups(s.view[s.cid]):
         xk, yk = x[rows], y[rows]
         diag[k] = math.hypot(xk.max() - xk.min(), yk.max() - yk.min())
-    abs_tol = [tolerance * (d if d > 0 else 1.0) for d in diag]
+    if chord is None:
+        abs_tol = [tolerance * (d if d > 0 else 1.0) for d in diag]
+    else:
+        abs_tol = [
+            chord if d <= 0 else min(max(chord, tol.MIN_CHORD_TOLERANCE * d), 0.1 * d) for d in diag
+        ]
     vis = Occlusion(nodes, views)
     _classify(s, vis)
     seed_crossings(s, vis)
