@@ -3,7 +3,9 @@
 ``lgraph.frame_writers`` drew and encoded a frame before they were made
 cheaper (whole supersampled canvas, each run transformed and handed to pillow
 on its own as Python floats, the whole canvas box-reduced; the whole frame
-inverted through a copy and encoded).  The fast code must give the same pixels.
+inverted through a copy and encoded; lines 2 px wide with the L-shaped pen
+of ``lgraph.backends.png.PEN_2`` drawn segment by segment).  The fast code
+must give the same pixels.
 """
 
 from __future__ import annotations
@@ -23,6 +25,17 @@ _DESCENDING_GREYS = bytes(c for g in range(255, -1, -1) for c in (g, g, g))
 
 
 def draw_polyline(draw, px, ink, lw):
+    if lw == 2:  # the L-shaped pen, segment by segment
+        p = np.trunc(px)
+        for shift in ((0, 0), (1, 0)):
+            draw.line((p + shift).ravel().tolist(), fill=ink, width=1)
+        d = np.diff(p, axis=0)
+        sign = [float(s) for s in np.sign(d[:, 0] * d[:, 1])]
+        for j in range(len(d)):  # level and upright: the nearest tilted one before, after
+            near = [s for s in [sign[j], *sign[:j][::-1], *sign[j:]] if s] + [1.0]
+            dy = 1 if near[0] > 0 else -1
+            draw.line((p[j : j + 2] + (0, dy)).ravel().tolist(), fill=ink, width=1)
+        return
     draw.line(px.ravel().tolist(), fill=ink, width=lw)
     if lw < 3:
         return

@@ -251,3 +251,23 @@ def test_gif_boxes_across_colour_frames_and_sizes(tmp_path):
     with pytest.raises(ValueError, match=r"frame 1 is \(30, 40\) px, the first \(40, 30\)"):
         w.add(Image.new("L", (30, 40), 255))
     w.abort()
+
+
+def test_two_pixel_lines_weigh_the_same_at_every_angle():
+    # a 2-px line (supersampled) through the middle of the page at 0 .. 180
+    # degrees: its ink (grey levels summed, in output pixels) per unit of
+    # length is 2/3 px (2 px / supersample 3) give or take the pen's shape;
+    # pillow's own 2-px polygons would give 0.39 at 10 degrees, 0.75 at 60
+    page = Page(width=200.0, height=200.0, margin=0.0)
+    weights = []
+    for deg in range(0, 181, 5):
+        a = np.radians(deg + 0.3)  # off the axes by a little: no exact ties
+        end = 80 * np.array([np.cos(a), np.sin(a)])
+        d = Drawing(strokes=(_stroke([-end, end], width=2 / 3),), page=page,
+                    window=(-100.0, -100.0, 100.0, 100.0))  # fmt: skip
+        img, _ = png.render_image(d, dpi=72, gray=True)
+        assert img.mode == "L" and png.render_image(d, dpi=72)[0].size == img.size
+        ink = (255 - np.asarray(img, dtype=float)).sum() / 255
+        weights.append(ink / 160)
+    assert 0.6 < min(weights) and max(weights) < 0.8
+    assert max(weights) / min(weights) < 1.15
