@@ -4,7 +4,7 @@
 cheaper (whole supersampled canvas, each run transformed and handed to pillow
 on its own as Python floats, the whole canvas box-reduced; the whole frame
 inverted through a copy and encoded; lines 2 px wide with the L-shaped pen
-of ``lgraph.backends.png.PEN_2`` drawn segment by segment).  The fast code
+of ``lgraph.backends._pen`` drawn line by line).  The fast code
 must give the same pixels.
 """
 
@@ -25,16 +25,14 @@ _DESCENDING_GREYS = bytes(c for g in range(255, -1, -1) for c in (g, g, g))
 
 
 def draw_polyline(draw, px, ink, lw):
-    if lw == 2:  # the L-shaped pen, segment by segment
-        p = np.trunc(px)
-        for shift in ((0, 0), (1, 0)):
-            draw.line((p + shift).ravel().tolist(), fill=ink, width=1)
-        d = np.diff(p, axis=0)
-        sign = [float(s) for s in np.sign(d[:, 0] * d[:, 1])]
-        for j in range(len(d)):  # level and upright: the nearest tilted one before, after
-            near = [s for s in [sign[j], *sign[:j][::-1], *sign[j:]] if s] + [1.0]
-            dy = 1 if near[0] > 0 else -1
-            draw.line((p[j : j + 2] + (0, dy)).ravel().tolist(), fill=ink, width=1)
+    if lw == 2:  # the L-shaped pen, line by line: the points, back through them moved in x,
+        p = np.trunc(px)  # then segment by segment moved down (falling) or up (rising)
+        draw.line(p.ravel().tolist(), fill=ink, width=1)
+        draw.line((p + (1, 0))[::-1].ravel().tolist(), fill=ink, width=1)
+        for j in range(len(p) - 1):  # level and upright segments count as falling
+            (dx, dy) = p[j + 1] - p[j]
+            move = -1 if dx * dy < 0 else 1
+            draw.line((p[j : j + 2] + (0, move)).ravel().tolist(), fill=ink, width=1)
         return
     draw.line(px.ravel().tolist(), fill=ink, width=lw)
     if lw < 3:

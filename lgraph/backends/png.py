@@ -3,7 +3,7 @@
 The drawing is rendered at ``supersample`` times the output resolution and
 box-reduced (``Image.reduce``), which anti-aliases without the ringing of a
 Lanczos filter.  Lines 2 supersampled pixels wide are drawn with an L-shaped
-pen (:data:`PEN_2`): unlike pillow's own, their weight does not change with
+pen (:mod:`lgraph.backends._pen`): unlike pillow's own, their weight does not change with
 their direction.  Round caps and joins are drawn as discs: pillow's own
 ``joint="curve"`` loops over every vertex in Python and gives no caps, so
 discs go only where they show (stroke ends, dash ends and vertices whose
@@ -41,6 +41,7 @@ import numpy as np
 
 from ..dashes import dash_polyline
 from ._common import background_rgb, check_options, page_run_points, positive_finite
+from ._pen import Pen
 
 __all__ = ["write_png", "render_image", "MAX_SIDE"]
 
@@ -134,77 +135,23 @@ def _pillow_xy(px: np.ndarray, small: bool) -> Any:
     return np.trunc(px).astype(np.float32) if small else px.ravel().tolist()
 
 
-#: A stroke 2 supersampled pixels wide is drawn with an L-shaped pen: three
-#: 1-pixel lines, through the points pillow truncates to, through them moved
-#: one pixel in x, and through them moved one pixel in y, down where the
-#: polyline falls (y grows with x, in pixel coordinates) and up where it
-#: rises, so that the pen's corner points across the line.  Its weight is
-#: 2-2.24 pixels per unit of length at every angle; pillow's own 2-pixel
-#: lines (one polygon a segment, corners rounded to whole pixels) vary from
-#: 1.17 (at 10 degrees) to 2.24, which shows as lines fading with their
-#: direction, and take three times as long.
-PEN_2 = ((1, 0), (0, 1), (0, -1))
-
-
-class _Pen:
-    """The L-shaped pen's lines for all points ``px`` (supersampled pixels) at
-    once: the points moved by each of :data:`PEN_2`, as :func:`_pillow_xy`
-    gives them, and for the polylines ``bounds`` (``(start, stop)`` of their
-    points) where their segments turn from falling to rising.  A level,
-    upright or empty segment goes with the nearest segment before it in its
-    polyline that falls or rises, else the nearest after it, else falls."""
-
-    def __init__(self, px: np.ndarray, small: bool, bounds: list[tuple[int, int]]) -> None:
-        base = np.trunc(px)
-        self.small = small
-        self.moved = [_pillow_xy(base + shift, small) for shift in PEN_2]
-        n = max(len(px) - 1, 0)
-        d = np.diff(base, axis=0)
-        sign = np.sign(d[:, 0] * d[:, 1])
-        # the first segment of each segment's polyline (segments between two
-        # polylines are never drawn)
-        first = np.zeros(n, dtype=np.int64)
-        for a, b in bounds:
-            first[a : b - 1] = a
-        idx = np.arange(n)
-        before = np.maximum.accumulate(np.where(sign != 0, idx, -1)) if n else idx
-        after = np.minimum.accumulate(np.where(sign != 0, idx, n)[::-1])[::-1] if n else idx
-        src = np.where(before >= first, before, after)
-        ok = (src >= 0) & (src < n)
-        got = sign[np.where(ok, src, 0)] if n else sign
-        # "after" may lie in the next polyline: then no segment of this one tilts
-        tilted = ok & (np.where(ok, first[np.where(ok, src, 0)], -1) == first)
-        self.falls = ~tilted | (got > 0)
-        self.turns = np.flatnonzero(self.falls[1:] != self.falls[:-1]) + 1
-
-    def draw(self, draw: Any, a: int, b: int, ink: tuple[int, ...] | int) -> None:
-        """Points ``a .. b - 1`` moved in x, then down or up piece by piece."""
-        k = 1 if self.small else 2
-        draw.line(self.moved[0][k * a : k * b], fill=ink, width=1)
-        cuts = self.turns[(self.turns > a) & (self.turns < b - 1)].tolist()
-        for s0, s1 in zip([a, *cuts], [*cuts, b - 1]):  # segments s0 .. s1 - 1
-            moved = self.moved[1] if self.falls[s0] else self.moved[2]
-            draw.line(moved[k * s0 : k * (s1 + 1)], fill=ink, width=1)
-
-
 def _draw_line(
-    draw: Any, xy: Any, pen: tuple[_Pen, int, int] | None, ink: tuple[int, ...] | int, lw: int
+    draw: Any, xy: Any, pen: tuple[Pen, int] | None, ink: tuple[int, ...] | int, lw: int
 ) -> None:
-    """Draw the polyline at pillow points ``xy`` ``lw`` pixels wide (2: with
-    the L-shaped pen, for its points ``a .. b - 1``)."""
+    """Draw the polyline at pillow points ``xy`` ``lw`` pixels wide (2: the
+    L-shaped pen's stroke of the pen's polyline starting at point ``a``)."""
     if lw != 2:
         draw.line(xy, fill=ink, width=lw)
         return
-    draw.line(xy, fill=ink, width=1)
-    lines, a, b = pen
-    lines.draw(draw, a, b, ink)
+    lines, a = pen
+    lines.draw(draw, a, ink)
 
 
 def _draw_polyline(
     draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int, small: bool
 ) -> None:
     """Draw one polyline in supersampled pixel coordinates with round caps/joins."""
-    pen = (_Pen(px, small, [(0, len(px))]), 0, len(px)) if lw == 2 else None
+    pen = (Pen(_pillow_xy, px, small, [(0, len(px))]), 0) if lw == 2 else None
     _draw_line(draw, _pillow_xy(px, small), pen, ink, lw)
     _draw_discs(draw, px, ink, lw, small)
 
@@ -464,7 +411,7 @@ def render_image(
         draw = ImageDraw.Draw(img)
         xy = _pillow_xy(px, small)  # all points at once
         two = [(p[0], p[1]) for p in plan if p[3] == 2 and not p[4]]
-        pen = _Pen(px, small, two) if two else None
+        pen = Pen(_pillow_xy, px, small, two) if two else None
         k = 1 if small else 2  # rows or list items a point
         for start, stop, ink, lw, pattern in plan:
             if not lw:
@@ -473,7 +420,7 @@ def render_image(
                 for piece in dash_polyline(px[start:stop], pattern):
                     _draw_polyline(draw, piece, ink, lw, small)
             else:
-                run = (pen, start, stop) if lw == 2 else None
+                run = (pen, start) if lw == 2 else None
                 _draw_line(draw, xy[k * start : k * stop], run, ink, lw)
                 _draw_discs(draw, px[start:stop], ink, lw, small)
     if too_wide:
