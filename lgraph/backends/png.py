@@ -2,12 +2,13 @@
 
 The drawing is rendered at ``supersample`` times the output resolution and
 box-reduced (``Image.reduce``), which anti-aliases without the ringing of a
-Lanczos filter.  Lines 2 supersampled pixels wide are drawn with an L-shaped
-pen (:mod:`lgraph.backends._pen`): unlike pillow's own, their weight does not change with
-their direction.  Round caps and joins are drawn as discs: pillow's own
-``joint="curve"`` loops over every vertex in Python and gives no caps, so
-discs go only where they show (stroke ends, dash ends and vertices whose
-turning angle opens a visible gap), found with one vectorized test.
+Lanczos filter.  Lines 2 supersampled pixels wide are drawn with an
+L-shaped pen (:mod:`lgraph.backends._pen`): unlike pillow's own, their
+weight does not change with their direction.  Round caps and joins of
+wider lines are drawn as discs: pillow's own ``joint="curve"`` loops over
+every vertex in Python and gives no caps, so discs go only where they show
+(stroke ends, dash ends and vertices whose turning angle opens a visible
+gap), found with one vectorized test.
 
 Animation frames make this path hot, so it does no more work than the pixels
 need, without changing one of them: all points are mapped at once and handed
@@ -135,24 +136,15 @@ def _pillow_xy(px: np.ndarray, small: bool) -> Any:
     return np.trunc(px).astype(np.float32) if small else px.ravel().tolist()
 
 
-def _draw_line(
-    draw: Any, xy: Any, pen: tuple[Pen, int] | None, ink: tuple[int, ...] | int, lw: int
-) -> None:
-    """Draw the polyline at pillow points ``xy`` ``lw`` pixels wide (2: the
-    L-shaped pen's stroke of the pen's polyline starting at point ``a``)."""
-    if lw != 2:
-        draw.line(xy, fill=ink, width=lw)
-        return
-    lines, a = pen
-    lines.draw(draw, a, ink)
-
-
 def _draw_polyline(
     draw: Any, px: np.ndarray, ink: tuple[int, ...] | int, lw: int, small: bool
 ) -> None:
-    """Draw one polyline in supersampled pixel coordinates with round caps/joins."""
-    pen = (Pen(_pillow_xy, px, small, [(0, len(px))]), 0) if lw == 2 else None
-    _draw_line(draw, _pillow_xy(px, small), pen, ink, lw)
+    """Draw one polyline in supersampled pixel coordinates with round caps/joins
+    (2 pixels wide: with the L-shaped pen)."""
+    if lw == 2:
+        Pen(_pillow_xy, px, small, [(0, len(px))]).draw(draw, 0, ink)
+        return
+    draw.line(_pillow_xy(px, small), fill=ink, width=lw)
     _draw_discs(draw, px, ink, lw, small)
 
 
@@ -419,9 +411,10 @@ def render_image(
             elif pattern:
                 for piece in dash_polyline(px[start:stop], pattern):
                     _draw_polyline(draw, piece, ink, lw, small)
+            elif lw == 2:
+                pen.draw(draw, start, ink)
             else:
-                run = (pen, start) if lw == 2 else None
-                _draw_line(draw, xy[k * start : k * stop], run, ink, lw)
+                draw.line(xy[k * start : k * stop], fill=ink, width=lw)
                 _draw_discs(draw, px[start:stop], ink, lw, small)
     if too_wide:
         warnings.warn(
