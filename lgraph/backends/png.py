@@ -142,7 +142,7 @@ def _draw_polyline(
     """Draw one polyline in supersampled pixel coordinates with round caps/joins
     (2 pixels wide: with the L-shaped pen)."""
     if lw == 2:
-        Pen(_pillow_xy, px, small, [(0, len(px))]).draw(draw, 0, ink)
+        Pen(_pillow_xy, px, small).draw(draw, 0, len(px), ink)
         return
     draw.line(_pillow_xy(px, small), fill=ink, width=lw)
     _draw_discs(draw, px, ink, lw, small)
@@ -402,8 +402,8 @@ def render_image(
         img = _canvas(mode, full[2:], fill, box)
         draw = ImageDraw.Draw(img)
         xy = _pillow_xy(px, small)  # all points at once
-        two = [(p[0], p[1]) for p in plan if p[3] == 2 and not p[4]]
-        pen = Pen(_pillow_xy, px, small, two) if two else None
+        two = any(p[3] == 2 and not p[4] for p in plan)
+        pen = Pen(_pillow_xy, px, small) if two else None
         k = 1 if small else 2  # rows or list items a point
         for start, stop, ink, lw, pattern in plan:
             if not lw:
@@ -412,7 +412,7 @@ def render_image(
                 for piece in dash_polyline(px[start:stop], pattern):
                     _draw_polyline(draw, piece, ink, lw, small)
             elif lw == 2:
-                pen.draw(draw, start, ink)
+                pen.draw(draw, start, stop, ink)
             else:
                 draw.line(xy[k * start : k * stop], fill=ink, width=lw)
                 _draw_discs(draw, px[start:stop], ink, lw, small)
