@@ -84,6 +84,21 @@ def count(owner: str, minimum: int = 0, maximum: int = MAX_CURVES) -> Validator:
     return check
 
 
+def positive_finite(owner: str, name: str, value: Any) -> float:
+    """``value`` (a numpy scalar too) as a float, if a positive finite real
+    number; else ValueError naming ``owner`` and ``name``.
+
+    >>> positive_finite("render_views", "chord", 0)
+    Traceback (most recent call last):
+    ...
+    ValueError: render_views: chord must be a positive finite number, got 0
+    """
+    value = as_number(value)
+    if not (_is_real(value) and math.isfinite(value) and value > 0):
+        raise ValueError(f"{owner}: {name} must be a positive finite number, got {value!r}")
+    return float(value)
+
+
 def as_number(value: Any) -> Any:
     """Converter: numpy scalars to Python floats; leaves anything else for the validator."""
     if isinstance(value, np.generic) and np.issubdtype(type(value), np.number):

@@ -19,7 +19,7 @@ import attrs
 import numpy as np
 
 from ._budget import check_frames
-from ._validate import as_number, vector3
+from ._validate import as_number, positive_finite, vector3
 from .geometry.vectors import cross3
 
 __all__ = ["Projector", "ParallelProjector", "CentralProjector", "orbit"]
@@ -193,16 +193,7 @@ class CentralProjector(Projector):
     ) -> CentralProjector:
         """Eye at ``distance`` from ``target`` in the direction given by
         ``azimuth`` and ``elevation`` (degrees)."""
-        distance = as_number(distance)
-        if not (
-            isinstance(distance, (int, float))
-            and not isinstance(distance, bool)
-            and math.isfinite(distance)
-            and distance > 0
-        ):
-            raise ValueError(
-                f"CentralProjector: distance must be a positive finite number, got {distance!r}"
-            )
+        distance = positive_finite("CentralProjector", "distance", distance)
         t = vector3("CentralProjector", "target", target)
         return cls(eye=t + distance * _direction_from_angles(azimuth, elevation), target=t)
 

@@ -198,5 +198,5 @@ def test_chord_bounds_the_chords_of_every_view_by_one_length():
     # a relative tolerance scales with each view's figure: the same points
     same = [len(d.strokes[0].xy) for d in render_views(scene, views, tolerance=5e-6)]
     assert same[0] == same[1]
-    with pytest.raises(ValueError, match="chord must be a positive finite length"):
+    with pytest.raises(ValueError, match="chord must be a positive finite number"):
         render_views(scene, views, chord=0)

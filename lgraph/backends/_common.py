@@ -8,12 +8,13 @@
 
 from __future__ import annotations
 
-import math
 import numbers
 from collections.abc import Iterator, Mapping
 from typing import Any
 
 import numpy as np
+
+from .._validate import positive_finite  # noqa: F401 - the backends' check (re-exported)
 
 __all__ = [
     "check_options",
@@ -158,15 +159,3 @@ def page_runs(drawing: Any) -> Iterator[tuple[np.ndarray, Any]]:
     """
     pts, bounds, strokes = page_run_points(drawing)
     yield from ((pts[a:b], s) for (a, b), s in zip(bounds, strokes))
-
-
-def positive_finite(writer: str, name: str, value: Any) -> float:
-    """Validate a positive finite real number."""
-    if not (
-        isinstance(value, numbers.Real)
-        and not isinstance(value, bool)
-        and math.isfinite(value)
-        and value > 0
-    ):
-        raise ValueError(f"{writer}: {name} must be a positive finite number, got {value!r}")
-    return float(value)

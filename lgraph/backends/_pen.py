@@ -21,19 +21,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["PEN_2", "Pen"]
-
-
-#: A stroke 2 supersampled pixels wide is drawn with an L-shaped pen: three
-#: 1-pixel lines, through the points pillow truncates to, through them moved
-#: one pixel in x, and through them moved one pixel in y, down where the
-#: polyline falls (y grows with x, in pixel coordinates) and up where it
-#: rises, so that the pen's corner points across the line.  Its weight is
-#: 2-2.24 pixels per unit of length at every angle; pillow's own 2-pixel
-#: lines (one polygon a segment, corners rounded to whole pixels) vary from
-#: 1.17 (at 10 degrees) to 2.24, which shows as lines fading with their
-#: direction, and take half as long again to draw.
-PEN_2 = ((1, 0), (0, 1), (0, -1))
+__all__ = ["Pen"]
 
 
 class Pen:

@@ -27,7 +27,7 @@ import attrs
 import numpy as np
 
 from .. import _tolerance as tol
-from .._validate import as_number
+from .._validate import as_number, positive_finite
 from ..drawing import Drawing, Stroke
 from ..geometry.transforms import Transform
 from ..page import Page, _page
@@ -253,15 +253,7 @@ def render_views(
         return []
     options = _checked_options(hidden_lines, tolerance, page, hidden_style)
     if chord is not None:
-        chord = as_number(chord)
-        if not (
-            isinstance(chord, (int, float))
-            and not isinstance(chord, bool)
-            and math.isfinite(chord)
-            and chord > 0
-        ):
-            raise ValueError(f"render_views: chord must be a positive finite length, got {chord!r}")
-        options = (*options, float(chord))
+        options = (*options, positive_finite("render_views", "chord", chord))
     try:
         return _render(scene, Views(projectors), *options)
     except NotBatchable:  # e.g. an eye inside a sphere's box in some views only
