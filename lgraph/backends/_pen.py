@@ -48,7 +48,14 @@ class Pen:
         self.k = 1 if small else 2  # rows or list items a point
 
     def draw(self, draw: Any, a: int, b: int, ink: tuple[int, ...] | int) -> None:
-        """The three lines of the polyline through points ``a .. b - 1``."""
+        """The three lines of the polyline through points ``a .. b - 1``, with
+        ``draw`` (a ``PIL.ImageDraw.ImageDraw``).
+
+        They go straight to pillow's core drawing object (what
+        ``ImageDraw.line`` calls for a 1-pixel line), with the ink looked up
+        once: a frame draws hundreds of these short lines."""
         k, n = self.k, self.n
+        core = draw.draw
+        ink = core.draw_ink(ink)
         for xy, (s, e) in zip(self.lines, ((a, b), (n - b, n - a), (2 * a, 2 * b - 2))):
-            draw.line(xy[k * s : k * e], fill=ink, width=1)
+            core.draw_lines(xy[k * s : k * e], ink, 1)

@@ -31,6 +31,7 @@ next frame of the same size, with only that box cleared.
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 import os
@@ -205,6 +206,15 @@ def _canvas(mode: str, size: tuple[int, int], fill: Any, box: tuple[int, int, in
     return img
 
 
+@functools.lru_cache(maxsize=16)
+def _reduced_fill(mode: str, fill: Any, ss: int) -> Any:
+    """The background ``fill`` as the box filter of ``ss`` gives it (a
+    constant, kept: every frame of an animation asks for it)."""
+    from PIL import Image
+
+    return Image.new(mode, (ss, ss), fill).reduce(ss).getpixel((0, 0)) if ss > 1 else fill
+
+
 def _onto_page(
     canvas: Any,
     mode: str,
@@ -218,9 +228,7 @@ def _onto_page(
     from PIL import Image
 
     left, top = box[:2]
-    if ss > 1:  # the background as the box filter gives it
-        fill = Image.new(mode, (ss, ss), fill).reduce(ss).getpixel((0, 0))
-    page = Image.new(mode, size, fill)
+    page = Image.new(mode, size, _reduced_fill(mode, fill, ss))
     if canvas is not None:
         part = canvas.reduce(ss, box=box) if ss > 1 else canvas.crop(box)
         page.paste(part, (left // ss, top // ss))

@@ -115,7 +115,9 @@ def _strokes(
     ends_k = total[1::2].tolist()  # where each stroke's samples end
     bounds = list(zip([0, *ends_k[:-1]], ends_k))
     xy, xyz, uv = ([g[i:j] for i, j in bounds] for g in (s.xy[idx], s.xyz[idx], s.uv[idx]))
-    styles: dict[tuple[int, str], Style] = {}
+    # a style depends on the batch's own style, the node and the family: the
+    # same for a batch (or a node's contour) in every view
+    styles: dict[tuple[int, int, str], Style] = {}
     out: list[list[Stroke]] = [[] for _ in min_extent]
     for k, (c, p, hid, v) in enumerate(
         zip(
@@ -128,9 +130,10 @@ def _strokes(
         batch, node, _, first_id = s.parts[p]
         names = batch.curve_family
         family = batch.family if names is None else names[c - first_id]
-        style = styles.get((p, family))
+        key = (id(batch.style), node, family)
+        style = styles.get(key)
         if style is None:
-            style = styles[p, family] = batch.style or nodes[node].style_for(family)
+            style = styles[key] = batch.style or nodes[node].style_for(family)
         out[v].append(
             Stroke(
                 xy=xy[k],

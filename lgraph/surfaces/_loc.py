@@ -131,10 +131,27 @@ def ellipsoid_frame(axes: np.ndarray) -> tuple[np.ndarray, float, float, float]:
 def ellipsoid_point(p: float, q: float, r: float, phi: Any, theta: Any) -> np.ndarray:
     """Sorted-frame point with ellipsoidal angles ``phi, theta`` (module docstring)."""
     phi, theta = np.broadcast_arrays(np.asarray(phi, float), np.asarray(theta, float))
-    s_phi, c_phi, s_th, c_th = np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta)
-    k1 = np.sqrt(np.maximum((q - p) + (r - q) * c_th**2, 0.0) / (r - p))
-    k3 = np.sqrt(np.maximum((r - p) - (q - p) * s_phi**2, 0.0) / (r - p))
-    out = np.empty((*phi.shape, 3))
+    return _ellipsoid_xyz(p, q, r, *_phi_terms(p, q, r, phi), *_theta_terms(p, q, r, theta))
+
+
+def _phi_terms(p: float, q: float, r: float, phi: Any) -> tuple[Any, Any, Any]:
+    """``sin phi, cos phi`` and the factor ``k3(phi)`` of ``X3``."""
+    s_phi, c_phi = np.sin(phi), np.cos(phi)
+    return s_phi, c_phi, np.sqrt(np.maximum((r - p) - (q - p) * s_phi**2, 0.0) / (r - p))
+
+
+def _theta_terms(p: float, q: float, r: float, theta: Any) -> tuple[Any, Any, Any]:
+    """``sin theta, cos theta`` and the factor ``k1(theta)`` of ``X1``."""
+    s_th, c_th = np.sin(theta), np.cos(theta)
+    return s_th, c_th, np.sqrt(np.maximum((q - p) + (r - q) * c_th**2, 0.0) / (r - p))
+
+
+def _ellipsoid_xyz(
+    p: float, q: float, r: float, s_phi: Any, c_phi: Any, k3: Any, s_th: Any, c_th: Any, k1: Any
+) -> np.ndarray:
+    """The sorted-frame point from the terms of ``phi`` and ``theta`` (either
+    may be per-curve constants, broadcast against the other's samples)."""
+    out = np.empty((*np.broadcast_shapes(np.shape(s_phi), np.shape(s_th)), 3))
     out[..., 0] = math.sqrt(p) * s_phi * k1
     out[..., 1] = math.sqrt(q) * c_phi * c_th
     out[..., 2] = math.sqrt(r) * s_th * k3
@@ -165,28 +182,32 @@ def ellipsoid_lines(surface: Any, n1: int, n2: int) -> list[CurveBatch]:
     thetas = spread(lambda s: ellipsoid_point(p, q, r, 0.0, s), -_HALF_PI, _HALF_PI, n1)
     phis = spread(lambda s: ellipsoid_point(p, q, r, s, 0.0), -_HALF_PI, _HALF_PI, n2)
 
+    # per-curve constants: the angle, its sine and cosine and its factor (k1 or
+    # k3), so that a sample costs the terms of its own angle only
     def loop_theta(par: np.ndarray, t: np.ndarray) -> np.ndarray:  # theta fixed, phi = t
-        th = par[:, 0]
         if q == r:  # oblate about X1: full meridians
+            th = par[:, 0]
             X = np.stack(
                 [np.sqrt(p) * np.sin(t), np.sqrt(q) * np.cos(t) * np.cos(th),
                  np.sqrt(r) * np.cos(t) * np.sin(th)], axis=-1)  # fmt: skip
         else:
-            X = ellipsoid_point(p, q, r, t, th)
+            X = _ellipsoid_xyz(p, q, r, *_phi_terms(p, q, r, t), *par[:, 1:].T)
         return _scatter(X, order)
 
     def loop_phi(par: np.ndarray, t: np.ndarray) -> np.ndarray:  # phi fixed, theta = t
-        ph = par[:, 0]
         if p == q:  # prolate about X3: full meridians
+            ph = par[:, 0]
             X = np.stack(
                 [np.sqrt(p) * np.cos(t) * np.sin(ph), np.sqrt(q) * np.cos(t) * np.cos(ph),
                  np.sqrt(r) * np.sin(t)], axis=-1)  # fmt: skip
         else:
-            X = ellipsoid_point(p, q, r, ph, t)
+            X = _ellipsoid_xyz(p, q, r, *par[:, 1:].T, *_theta_terms(p, q, r, t))
         return _scatter(X, order)
 
-    return curve_batch(surface, "c1", loop_theta, thetas, 0.0, _TWO_PI, True, clip=False) + (
-        curve_batch(surface, "c2", loop_phi, phis, 0.0, _TWO_PI, True, clip=False)
+    theta_par = np.column_stack([thetas, *_theta_terms(p, q, r, thetas)])
+    phi_par = np.column_stack([phis, *_phi_terms(p, q, r, phis)])
+    return curve_batch(surface, "c1", loop_theta, theta_par, 0.0, _TWO_PI, True, clip=False) + (
+        curve_batch(surface, "c2", loop_phi, phi_par, 0.0, _TWO_PI, True, clip=False)
     )
 
 
