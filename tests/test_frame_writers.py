@@ -69,3 +69,40 @@ def test_gif_keeps_grey_frames_exactly_and_quantizes_colour_ones(tmp_path):
     for g, im in zip(got, grey):  # all 256 grey levels fit the frame's palette
         assert np.array_equal(g, np.repeat(np.asarray(im, dtype=int)[..., None], 3, axis=2))
     assert np.abs(got[3] - np.asarray(colour, dtype=int)).mean() < 40  # a palette of 256
+
+
+def _image_descriptors(data: bytes) -> list[bytes]:
+    """The 10-byte image descriptors of a GIF, read block by block."""
+
+    def skip_sub_blocks(pos: int) -> int:
+        while data[pos]:
+            pos += data[pos] + 1
+        return pos + 1
+
+    flags, pos, out = data[10], 13, []
+    if flags & 0x80:
+        pos += 3 << ((flags & 7) + 1)
+    while data[pos] != 0x3B:
+        if data[pos] == 0x21:  # an extension: label, then sub-blocks
+            pos = skip_sub_blocks(pos + 2)
+            continue
+        assert data[pos] == 0x2C
+        desc = data[pos : pos + 10]
+        out.append(desc)
+        pos += 10
+        if desc[9] & 0x80:
+            pos += 3 << ((desc[9] & 7) + 1)
+        pos = skip_sub_blocks(pos + 1)  # the LZW minimum code size, then the data
+    return out
+
+
+def test_gif_frames_are_not_interlaced(tmp_path):
+    rng = np.random.default_rng(2)
+    w = GifWriter(tmp_path / "b.gif", n_frames=3, fps=10)
+    for _ in range(2):  # grey frames, the second only within its changed box
+        w.add(Image.fromarray(rng.integers(0, 256, (30, 40), dtype=np.uint8)))
+    w.add(Image.fromarray(rng.integers(0, 256, (30, 40, 3), dtype=np.uint8)))
+    descriptors = _image_descriptors(w.close().read_bytes())
+    assert len(descriptors) == 3
+    assert all(d[9] & 0x40 == 0 for d in descriptors)  # rows in order
+    assert all(d[9] & 0x80 for d in descriptors)  # each with its local colour table
