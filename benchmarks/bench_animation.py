@@ -10,7 +10,7 @@ Run:  python benchmarks/bench_animation.py [--only turntable,workers,memory]
   of the same size: the figure's own view rendered and saved as a 480 px
   PNG, geometry cache empty, imports warmed up), in the same process.
   Target: at most 5 cold frames.  Every turntable run (each variant
-  ``--repeat`` times, default 5) follows a cold frame; ratios are medians of
+  ``--repeat`` times, default 9) follows a cold frame; ratios are medians of
   the runs over the median of all cold frames, in wall-clock time and, for
   the runs in this process, in CPU time (``time.process_time``: less
   disturbed by other processes on a loaded machine).  The turntable renders
@@ -159,7 +159,7 @@ def memory(tmp: Path) -> dict:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--only", default="turntable,workers,memory")
-    p.add_argument("--repeat", type=int, default=5, help="turntable runs (medians)")
+    p.add_argument("--repeat", type=int, default=9, help="turntable runs (medians)")
     args = p.parse_args()
     only = set(args.only.split(","))
     with tempfile.TemporaryDirectory() as t:
