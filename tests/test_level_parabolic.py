@@ -192,3 +192,38 @@ def test_scene_renders_level_and_parabolic_families():
     d = scene.render(lg.ParallelProjector(direction=(1, -1, 1)), hidden_lines=True)
     fams = {s.family for s in d.strokes}
     assert {"level", "parabolic", "contour"} <= fams
+
+
+@pytest.mark.parametrize(
+    "surface, direction, view",
+    [
+        (lg.Ellipsoid(3, 2, 1.5), (0, 1, 0), (1, 0.3, 0.4)),
+        (lg.Ellipsoid(3, 2, 1.5), (1, 1, 0), (-0.2, 1, 0.5)),
+        (lg.Sphere(1.3), (0, 0, 1), (0.3, -1, 0.2)),
+    ],
+)
+def test_closed_form_plane_sections_are_hidden_by_their_own_quadric(surface, direction, view):
+    # plane sections of a closed quadric lie on it: the far half of every
+    # section is hidden by the surface itself.  Independent check at every
+    # stroke point: on a convex quadric a point is hidden exactly where the
+    # outward normal (the gradient of x^2/a^2 + ...) faces away from the eye.
+    sc = lg.Scene()
+    sc.add(surface, lg.LevelLines(7, direction=direction))
+    p = lg.ParallelProjector(direction=view)
+    dr = sc.render(p, hidden_lines=True)
+    level = [s for s in dr.strokes if s.family == "level"]
+    assert any(s.visible for s in level) and any(not s.visible for s in level)
+    w = p.frame[2]
+    for s in level:
+        x = s.xyz
+        g = x / np.array(_axes(surface)) ** 2  # half the gradient
+        facing = g @ w / (np.linalg.norm(g, axis=1) * np.linalg.norm(w))
+        interior = facing[1:-1]  # the ends lie on the contour (facing = 0)
+        if s.visible:
+            assert np.all(interior > -1e-7)
+        else:
+            assert np.all(interior < 1e-7)
+
+
+def _axes(surface):
+    return (surface.r,) * 3 if isinstance(surface, lg.Sphere) else (surface.a, surface.b, surface.c)

@@ -129,8 +129,13 @@ def _shape(kind: str, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def plane_section(surface: Any, n: np.ndarray, h: float, family: str = "contour") -> list:
-    """Curve batches of the conic ``{F = 0} & {n.x = h}`` on the drawn patch."""
-    from .._own import CONTOUR
+    """Curve batches of the conic ``{F = 0} & {n.x = h}`` on the drawn patch.
+
+    Only the contour's own conic (``family="contour"``) is marked as lying on
+    the contour; every other section (level lines) lies on the surface and is
+    hidden by it like any curve on it.
+    """
+    from .._own import CONTOUR, ON
 
     found = _pieces(surface, np.asarray(n, float), float(h))
     if found is None:
@@ -161,4 +166,14 @@ def plane_section(surface: Any, n: np.ndarray, h: float, family: str = "contour"
         x = xyz(idx, np.asarray(t, float))
         return x, surface.uv_of(x)
 
-    return [CurveBatch(family, t0, t1, evaluate, closed=closed, surface=surface, own=CONTOUR)]
+    return [
+        CurveBatch(
+            family,
+            t0,
+            t1,
+            evaluate,
+            closed=closed,
+            surface=surface,
+            own=CONTOUR if family == "contour" else ON,
+        )
+    ]
