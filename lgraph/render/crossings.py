@@ -126,9 +126,13 @@ def _view_crossings(
     m = stop - start
     pq = np.repeat(q_item, m)
     pn = n_item[np.repeat(start - np.cumsum(m) + m, m) + np.arange(int(m.sum()))]
-    # a pair seen in several cells is tested once
-    key = np.unique(pq.astype(np.int64) * len(ni) + pn)
-    pq, pn = key // len(ni), key % len(ni)
+    # a pair seen in several cells is tested once: in the first cell of the
+    # overlap of their cell ranges
+    pc = np.repeat(q_cell, m)
+    first_x = np.maximum(cells_q[0][pq], cells_n[0][pn])
+    first_y = np.maximum(cells_q[1][pq], cells_n[1][pn])
+    once = pc == first_y * g + first_x
+    pq, pn = pq[once], pn[once]
     a, b = qi[pq], ni[pn]
     keep = cid[a] != cid[b]  # a curve does not cross itself into hiding
     a, b = a[keep], b[keep]
