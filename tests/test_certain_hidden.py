@@ -80,7 +80,7 @@ def test_random_tiny_spheres_in_front_of_a_line(seed):
 def test_sample_only_testing_misses_the_piece(monkeypatch):
     # the mutation check: without the net crossings the same scene draws the
     # whole line visible, so the test above depends on them
-    monkeypatch.setattr(render_pkg, "seed_net_crossings", lambda s, hiding: 0)
+    monkeypatch.setattr(render_pkg, "seed_net_crossings", lambda s, vis: 0)
     dr = _line_scene([(0.11, 0.0, 1.0, 0.05)]).render(
         lg.ParallelProjector(direction=(0, 0, 1)), hidden_lines=True
     )
@@ -112,3 +112,91 @@ def test_a_tiny_sphere_in_front_of_a_circle_in_a_central_view():
     step = t[1] - t[0]
     assert ang.min() == pytest.approx(shadow.min(), abs=2 * step)
     assert ang.max() == pytest.approx(shadow.max(), abs=2 * step)
+
+
+def _random_ellipsoids(rng, n):
+    sc = lg.Scene()
+    for _ in range(n):
+        axes = rng.uniform(0.3, 2.0, 3)
+        tr = lg.translate(*rng.uniform(-4, 4, 3)) @ lg.rotate(rng.normal(size=3), rng.uniform(0, 3))
+        sc.add(lg.Ellipsoid(*axes), lg.ParameterLines(2, 2), transform=tr)
+    return sc
+
+
+@pytest.mark.parametrize("central", [False, True])
+def test_outline_conics_vanish_on_the_contours(central):
+    # the exact outline of every grouped ellipsoid: zero on its (sampled)
+    # contour, positive at the image of its centre, negative far away; its
+    # tight box is the contour's extent
+    from lgraph.render.occlusion import Occlusion
+
+    rng = np.random.default_rng(3 + central)
+    sc = _random_ellipsoids(rng, 4)
+    p = (
+        lg.CentralProjector.from_angles(40, 30, 30)
+        if central
+        else lg.ParallelProjector.from_angles(-70, 35)
+    )
+    vis = Occlusion(sc.nodes, p)
+    C, box = vis.outlines(0), vis.outline_boxes(0)
+    dr = sc.render(p, tolerance=1e-7, hidden_lines=True)
+    contours = [s for s in dr.strokes if s.family == "contour"]
+    by_node = {}
+    for s in contours:  # each contour stroke lies on exactly one outline
+        y = np.column_stack([s.xy, np.ones(len(s.xy))])
+        vals = np.abs(np.einsum("ni,kij,nj->kn", y, C, y))
+        k = int(np.argmin(vals.max(axis=1)))
+        assert vals[k].max() < 1e-9
+        by_node.setdefault(k, []).append(s.xy)
+    assert sorted(by_node) == [0, 1, 2, 3]
+    for k, xys in by_node.items():
+        xy = np.concatenate(xys)
+        size = np.ptp(xy, axis=0).max()
+        assert np.allclose(box[k, :2], xy.min(axis=0), atol=1e-5 * size)
+        assert np.allclose(box[k, 2:], xy.max(axis=0), atol=1e-5 * size)
+    centres = np.array([n.transform.apply(np.zeros((1, 3)))[0] for n in sc.nodes])
+    y = np.column_stack([p.project(centres), np.ones(4)])
+    assert (np.einsum("ni,nij,nj->n", y, C, y) > 0).all()
+    far = np.array([1e3, -1e3, 1.0])
+    assert (np.einsum("i,nij,j->n", far, C, far) < 0).all()
+
+
+def test_a_tiny_sphere_hides_a_short_piece_of_a_big_spheres_line():
+    # chords on an ellipsoid are crossed with the outlines of the ellipsoids
+    # whose outline meets theirs: a sphere of radius 0.003 above a point of a
+    # parameter line of the unit sphere (seen from +z) hides a piece of it
+    # shorter than its chord, ends at distance r from the point in the image
+    view = lg.ParallelProjector(direction=(0, 0, 1))
+    big = lg.Scene()
+    big.add(lg.Sphere(1.0), lg.ParameterLines(5, 8))
+    lines = [s for s in big.render(view).strokes if s.family != "contour"]
+    # the meridians: great circles, whose normalized chord midpoints lie on them
+    strokes = [s for s in lines if abs(np.linalg.det(s.xyz[[0, len(s.xyz) // 2, -1]])) < 1e-12]
+    others = [np.concatenate([t.xy for t in lines if t is not s]) for s in strokes]
+
+    def mid(s):  # the point of the meridian half-way between two samples
+        m = len(s.xyz) // 2
+        q = s.xyz[m] + s.xyz[m + 1]
+        return q / np.linalg.norm(q)
+
+    best = max(
+        range(len(strokes)),
+        key=lambda i: np.linalg.norm(others[i] - mid(strokes[i])[:2], axis=1).min(),
+    )
+    p = mid(strokes[best])
+    assert p[2] > 0.2  # seen from +z, in front
+    r = 0.003
+    assert np.linalg.norm(others[best] - p[:2], axis=1).min() > 10 * r
+    sc = lg.Scene()
+    sc.add(lg.Sphere(1.0), lg.ParameterLines(5, 8))
+    sc.add(lg.Sphere(r), lg.ParameterLines(2, 2), transform=lg.translate(p[0], p[1], p[2] + 0.5))
+    dr = sc.render(view, hidden_lines=True)
+    hidden = [s for s in dr.strokes if s.surface is sc.nodes[0].surface and not s.visible]
+    hidden = [s for s in hidden if np.linalg.norm(s.xy - p[:2], axis=1).max() < 2 * r]
+    assert len(hidden) == 1
+    d = np.linalg.norm(hidden[0].xy - p[:2], axis=1)
+    assert d.max() <= r + 1e-9
+    assert d[0] == pytest.approx(r, abs=1e-7) and d[-1] == pytest.approx(r, abs=1e-7)
+    # and the piece is shorter than a chord of the line drawn alone
+    line = strokes[best].xy
+    assert np.ptp(hidden[0].xy, axis=0).max() < np.linalg.norm(np.diff(line, axis=0), axis=1).max()

@@ -9,10 +9,11 @@
    projected curve by at most ``tolerance`` times the figure's diagonal
    (:mod:`lgraph.render.sampling`) -- except, without hidden lines, chords on the
    far side of their own ellipsoid -- and the new samples are tested;
-4. where the projected net (contours and boundaries of the hiding
-   surfaces) crosses one chord twice or more, a sample is tested between
-   every two crossings (:mod:`lgraph.render.crossings`): a hidden piece
-   shorter than a chord is not missed;
+4. where the projected net (the exact outlines of the ellipsoids, the
+   contours and boundaries of the other hiding surfaces) crosses one chord
+   twice or more, a sample is tested between every two crossings
+   (:mod:`lgraph.render.crossings`): a hidden piece shorter than a chord is
+   not missed;
 5. where visibility flips between two samples, the flip is located to near
    machine precision on the curve parameter (:mod:`lgraph.render.flips`);
 6. runs of equal visibility become strokes;
@@ -359,8 +360,7 @@ def _render(
     settled = None if hidden_lines else _self_hidden(s, vis)
     refine(s, abs_tol[0] if views.k == 1 else np.array(abs_tol)[s.view], settled)
     _classify(s, vis)
-    hiding = np.array([n.surface is not None and n.hides for n in nodes], dtype=bool)
-    if seed_net_crossings(s, hiding):  # a short piece between two samples
+    if seed_net_crossings(s, vis):  # a short piece between two samples
         _classify(s, vis)
     locate_flips(s, vis)
     strokes = _strokes(s, nodes, hidden_lines, hidden_style, [1e-12 * d for d in diag])

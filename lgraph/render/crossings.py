@@ -11,17 +11,27 @@ consecutive crossings of such a chord, so that every interval between
 candidates carries a tested sample and ``locate_flips`` (:mod:`lgraph.render.flips`)
 finds both of its ends.
 
-The crossings are those of the polylines (each chord within the chord
-tolerance of its curve): an interval shorter than the chord tolerance of the
-figure may still be missed.  Contours that a node does not draw
-(``contour=False``) are not part of the net.
+For the grouped ellipsoids the net is exact: their outlines are conics in
+the image (``Occlusion.outlines``), crossed
+with each chord in closed form; a chord lying on an ellipsoid is crossed
+only with the outlines that meet its own (the image of a convex solid is
+convex), which keeps the work near the number of chords that matter.  For
+every other surface the crossings are those of the polylines (each chord
+within the chord tolerance of its curve): an interval shorter than the chord
+tolerance of the figure may still be missed there, and contours that such a
+node does not draw (``contour=False``) are not part of its net.
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .sampling import Samples, merge
+
+if TYPE_CHECKING:
+    from .occlusion import Occlusion
 
 __all__ = ["NET_FAMILIES", "seed_net_crossings"]
 
@@ -34,12 +44,12 @@ _CELLS_PER_CHORD = 0.5
 _MAX_ENTRIES = 4_000_000
 
 
-def _net_curves(s: Samples, hiding: np.ndarray) -> np.ndarray:
-    """Mask of the curves that belong to the net (contours and boundaries of
-    hiding nodes)."""
+def _net_curves(s: Samples, hiding: set[int]) -> np.ndarray:
+    """Mask of the curves that belong to the sampled net (contours and
+    boundaries of the nodes ``hiding``)."""
     net = np.zeros(len(s.t0), dtype=bool)
     for batch, node, _, first in s.parts:
-        if not hiding[node]:
+        if node not in hiding:
             continue
         names = batch.curve_family
         if names is None:
@@ -89,50 +99,76 @@ def chord_crossings(
     return hit, np.where(hit, fa, np.nan)
 
 
+def box_pairs(
+    alo: np.ndarray, ahi: np.ndarray, blo: np.ndarray, bhi: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs ``(i, j)`` of 2-D boxes ``alo[i]..ahi[i]`` and
+    ``blo[j]..bhi[j]`` that overlap, each pair once: a uniform grid sized on
+    the ``b`` boxes, every pair tested in the first cell of the overlap of
+    their cell ranges (no sorting of pairs, no duplicates).
+
+    >>> lo = np.array([[0.0, 0.0], [5.0, 5.0]]); hi = lo + 1
+    >>> [a.tolist() for a in box_pairs(lo, hi, np.array([[0.5, 0.5]]), np.array([[6.0, 6.0]]))]
+    [[0, 1], [0, 0]]
+    """
+    none = np.empty(0, np.int64)
+    if not len(alo) or not len(blo):
+        return none, none
+    # column by column: numpy gathers rows of an (n, 2) array slowly
+    ax0, ay0, ax1, ay1 = alo[:, 0], alo[:, 1], ahi[:, 0], ahi[:, 1]
+    bx0, by0, bx1, by1 = blo[:, 0], blo[:, 1], bhi[:, 0], bhi[:, 1]
+    lo = np.array([bx0.min(), by0.min()])
+    hi = np.array([bx1.max(), by1.max()])
+    # only a boxes that meet the b boxes' box can overlap one
+    near = np.flatnonzero((ax1 >= lo[0]) & (ax0 <= hi[0]) & (ay1 >= lo[1]) & (ay0 <= hi[1]))
+    if not len(near):
+        return none, none
+    ax0, ay0, ax1, ay1 = ax0[near], ay0[near], ax1[near], ay1[near]
+    g = int(max(1, min(np.sqrt(_CELLS_PER_CHORD * len(blo)), 2048)))
+
+    def cells(g: int) -> tuple:
+        size = np.maximum((hi - lo) / g, 1e-300)
+        cb = _cells(blo, bhi, lo, size, g)
+        ca = _cells(np.column_stack([ax0, ay0]), np.column_stack([ax1, ay1]), lo, size, g)
+        return cb, ca
+
+    cells_b, cells_a = cells(g)
+    count = lambda c: int(((c[2] - c[0] + 1) * (c[3] - c[1] + 1)).sum())  # noqa: E731
+    while g > 1 and count(cells_b) + count(cells_a) > _MAX_ENTRIES:
+        g = max(1, g // 2)
+        cells_b, cells_a = cells(g)
+    b_item, b_cell = _entries(*cells_b, g)
+    a_item, a_cell = _entries(*cells_a, g)
+    order = np.argsort(b_cell, kind="stable")
+    b_item, b_cell = b_item[order], b_cell[order]
+    start = np.searchsorted(b_cell, a_cell, "left")
+    m = np.searchsorted(b_cell, a_cell, "right") - start
+    pa = np.repeat(a_item, m)
+    pb = b_item[np.repeat(start - np.cumsum(m) + m, m) + np.arange(int(m.sum()))]
+    if len(a_item) > len(ax0) or len(b_item) > len(bx0):
+        # a pair seen in several cells is kept in the first cell of their overlap
+        pc = np.repeat(a_cell, m)
+        first_x = np.maximum(cells_a[0][pa], cells_b[0][pb])
+        first_y = np.maximum(cells_a[1][pa], cells_b[1][pb])
+        once = pc == first_y * g + first_x
+        pa, pb = pa[once], pb[once]
+    overlap = (ax1[pa] >= bx0[pb]) & (ax0[pa] <= bx1[pb])
+    overlap &= (ay1[pa] >= by0[pb]) & (ay0[pa] <= by1[pb])
+    return near[pa[overlap]], pb[overlap]
+
+
 def _view_crossings(
     xy: np.ndarray, qi: np.ndarray, ni: np.ndarray, cid: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """Crossings of query chords ``qi`` with net chords ``ni`` (chord ``i``
     runs from sample ``i`` to ``i + 1``) of one view: the query chord of each
     crossing and its fraction along it."""
-    if not len(qi) or not len(ni):
-        return np.empty(0, np.int64), np.empty(0)
-    nlo = np.minimum(xy[ni], xy[ni + 1])
-    nhi = np.maximum(xy[ni], xy[ni + 1])
-    qlo = np.minimum(xy[qi], xy[qi + 1])
-    qhi = np.maximum(xy[qi], xy[qi + 1])
-    # only query chords whose box meets the net's box can cross it
-    lo, hi = nlo.min(axis=0), nhi.max(axis=0)
-    near = np.all((qhi >= lo) & (qlo <= hi), axis=1)
-    qi, qlo, qhi = qi[near], qlo[near], qhi[near]
-    if not len(qi):
-        return np.empty(0, np.int64), np.empty(0)
-    g = int(max(1, min(np.sqrt(_CELLS_PER_CHORD * len(ni)), 2048)))
-    size = np.maximum((hi - lo) / g, 1e-300)
-    cells_n = _cells(nlo, nhi, lo, size, g)
-    cells_q = _cells(qlo, qhi, lo, size, g)
-    count = lambda c: int(((c[2] - c[0] + 1) * (c[3] - c[1] + 1)).sum())  # noqa: E731
-    while g > 1 and count(cells_n) + count(cells_q) > _MAX_ENTRIES:
-        g = max(1, g // 2)
-        size = np.maximum((hi - lo) / g, 1e-300)
-        cells_n = _cells(nlo, nhi, lo, size, g)
-        cells_q = _cells(qlo, qhi, lo, size, g)
-    n_item, n_cell = _entries(*cells_n, g)
-    q_item, q_cell = _entries(*cells_q, g)
-    order = np.argsort(n_cell, kind="stable")
-    n_item, n_cell = n_item[order], n_cell[order]
-    start = np.searchsorted(n_cell, q_cell, "left")
-    stop = np.searchsorted(n_cell, q_cell, "right")
-    m = stop - start
-    pq = np.repeat(q_item, m)
-    pn = n_item[np.repeat(start - np.cumsum(m) + m, m) + np.arange(int(m.sum()))]
-    # a pair seen in several cells is tested once: in the first cell of the
-    # overlap of their cell ranges
-    pc = np.repeat(q_cell, m)
-    first_x = np.maximum(cells_q[0][pq], cells_n[0][pn])
-    first_y = np.maximum(cells_q[1][pq], cells_n[1][pn])
-    once = pc == first_y * g + first_x
-    pq, pn = pq[once], pn[once]
+    pq, pn = box_pairs(
+        np.minimum(xy[qi], xy[qi + 1]),
+        np.maximum(xy[qi], xy[qi + 1]),
+        np.minimum(xy[ni], xy[ni + 1]),
+        np.maximum(xy[ni], xy[ni + 1]),
+    )
     a, b = qi[pq], ni[pn]
     keep = cid[a] != cid[b]  # a curve does not cross itself into hiding
     a, b = a[keep], b[keep]
@@ -140,13 +176,102 @@ def _view_crossings(
     return a[hit], frac[hit]
 
 
-def seed_net_crossings(s: Samples, hiding: np.ndarray) -> int:
+def _conic_roots(xy: np.ndarray, qi: np.ndarray, C: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where chords ``qi`` cross the outline conic ``C`` (one ``(3, 3)``, or
+    one a chord): the chord of each crossing and its fraction along it, the
+    roots in (0, 1) of the quadratic ``f(s) = y(s) C y(s)`` along the chord."""
+    x0, y0 = xy[qi, 0], xy[qi, 1]
+    rx, ry = xy[qi + 1, 0] - x0, xy[qi + 1, 1] - y0
+    if C.ndim == 2:
+        C = C[None]
+    c00, c01, c02 = C[:, 0, 0], C[:, 0, 1], C[:, 0, 2]
+    c11, c12, c22 = C[:, 1, 1], C[:, 1, 2], C[:, 2, 2]
+    # y(s) = a + s r with a = (x0, y0, 1), r = (rx, ry, 0)
+    alpha = c00 * rx * rx + 2 * c01 * rx * ry + c11 * ry * ry
+    beta = 2 * (c00 * x0 * rx + c01 * (x0 * ry + y0 * rx) + c11 * y0 * ry + c02 * rx + c12 * ry)
+    gamma = c00 * x0 * x0 + 2 * c01 * x0 * y0 + c11 * y0 * y0 + 2 * (c02 * x0 + c12 * y0) + c22
+    disc = beta * beta - 4 * alpha * gamma
+    with np.errstate(all="ignore"):
+        w = -0.5 * (beta + np.copysign(np.sqrt(disc), beta))  # the stable pair
+        s1, s2 = w / alpha, gamma / w
+    ok1 = (disc > 0) & (s1 > 0) & (s1 < 1)
+    ok2 = (disc > 0) & (s2 > 0) & (s2 < 1)
+    return np.concatenate([qi[ok1], qi[ok2]]), np.concatenate([s1[ok1], s2[ok2]])
+
+
+def _outline_crossings(
+    s: Samples, vis: Occlusion, k: int, chord: np.ndarray
+) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Crossings of chords ``chord`` (all of view ``k``) with the outlines
+    of the grouped ellipsoids other than their own.
+
+    A chord between two points of an ellipsoid lies inside that ellipsoid's
+    outline (the image of a convex solid is convex), so it can meet only the
+    outlines that meet its own: those chords are taken per pair of
+    ellipsoids whose tight outline boxes overlap, from the contiguous range
+    of their node's chords, one conic at a time.  Every other chord is
+    joined with all outline boxes through :func:`box_pairs`."""
+    C, box = vis.outlines(k), vis.outline_boxes(k)
+    qn = np.full(int(vis.q_node.max()) + 1, -1)
+    qn[vis.q_node] = np.arange(vis.nq)
+    cid = s.cid[chord]
+    owner = s.owner[cid]
+    qo = np.where((owner >= 0) & (owner < len(qn)), qn[np.clip(owner, 0, len(qn) - 1)], -1)
+    qo[s.kind[cid] == 0] = -1  # OFF: not on its ellipsoid
+    ok = np.isfinite(box[:, 0])
+    x0, y0 = (
+        np.minimum(s.xy[chord, 0], s.xy[chord + 1, 0]),
+        np.minimum(s.xy[chord, 1], s.xy[chord + 1, 1]),
+    )
+    x1, y1 = (
+        np.maximum(s.xy[chord, 0], s.xy[chord + 1, 0]),
+        np.maximum(s.xy[chord, 1], s.xy[chord + 1, 1]),
+    )
+    found_q, found_f = [], []
+    free = np.flatnonzero(qo < 0)
+    if len(free):
+        pc, pq = box_pairs(
+            np.column_stack([x0[free], y0[free]]),
+            np.column_stack([x1[free], y1[free]]),
+            np.where(ok[:, None], box[:, :2], np.inf),
+            np.where(ok[:, None], box[:, 2:], -np.inf),
+        )
+        q, f = _conic_roots(s.xy, chord[free[pc]], C[pq])
+        found_q.append(q)
+        found_f.append(f)
+    # chords on ellipsoid j, against every ellipsoid q whose outline box meets j's
+    on = np.flatnonzero(qo >= 0)
+    if not len(on):
+        return found_q, found_f
+    order = on[np.argsort(qo[on], kind="stable")]  # already sorted, as a rule
+    starts = np.searchsorted(qo[order], np.arange(vis.nq), "left")
+    stops = np.searchsorted(qo[order], np.arange(vis.nq), "right")
+    meet = (box[:, None, 0] <= box[None, :, 2]) & (box[:, None, 2] >= box[None, :, 0])
+    meet &= (box[:, None, 1] <= box[None, :, 3]) & (box[:, None, 3] >= box[None, :, 1])
+    meet &= vis.first[vis.q_node][:, None] != vis.first[vis.q_node][None, :]  # not twins
+    for j, q in zip(*np.nonzero(meet & (stops > starts)[:, None])):
+        rows = order[starts[j] : stops[j]]
+        bx0, by0, bx1, by1 = box[q]
+        rows = rows[(x1[rows] >= bx0) & (x0[rows] <= bx1) & (y1[rows] >= by0) & (y0[rows] <= by1)]
+        if len(rows):
+            qq, f = _conic_roots(s.xy, chord[rows], C[q])
+            found_q.append(qq)
+            found_f.append(f)
+    return found_q, found_f
+
+
+def seed_net_crossings(s: Samples, vis: Occlusion) -> int:
     """Insert, into every chord that the net crosses twice or more, one
     untested sample between each two consecutive crossings (so that the
-    interval between them is tested); ``hiding`` flags the nodes that hide.
-    Returns the number of samples inserted."""
-    net = _net_curves(s, hiding)
-    if not net.any():
+    interval between them is tested).  The net: the exact outline conics of
+    the grouped ellipsoids (:meth:`~lgraph.render.occlusion.Occlusion.outlines`)
+    and the sampled contours and boundaries of every other hiding surface.
+    A curve is not crossed with its own surface's outline (its own contour
+    crossings are seeded by :func:`~lgraph.render.flips.seed_crossings` or
+    followed by the own-surface tests).  Returns the number of samples
+    inserted."""
+    net = _net_curves(s, set(vis.twins))  # the surfaces asked one by one
+    if not net.any() and not vis.nq:
         return 0
     chord = np.flatnonzero(s.cid[1:] == s.cid[:-1])
     chord = chord[(s.t[chord + 1] - s.t[chord]) > 0]
@@ -155,9 +280,16 @@ def seed_net_crossings(s: Samples, hiding: np.ndarray) -> int:
     found_q, found_f = [], []
     for k in np.unique(view).tolist():
         in_view = view == k
-        q, f = _view_crossings(s.xy, chord[in_view], chord[in_view & is_net], s.cid)
-        found_q.append(q)
-        found_f.append(f)
+        if net.any():
+            q, f = _view_crossings(s.xy, chord[in_view], chord[in_view & is_net], s.cid)
+            found_q.append(q)
+            found_f.append(f)
+        if vis.nq:
+            q, f = _outline_crossings(s, vis, k, chord[in_view])
+            found_q += q
+            found_f += f
+    if not found_q:
+        return 0
     q, f = np.concatenate(found_q), np.concatenate(found_f)
     if not len(q):
         return 0

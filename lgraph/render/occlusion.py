@@ -10,7 +10,11 @@ import numpy as np
 from .. import _tolerance as tol
 from ..projectors import CentralProjector, Projector
 from ..surfaces._base import CONTOUR, OFF
-from ..surfaces._quadric_ray import quadric_coefficients_world, quadric_ray_hits
+from ..surfaces._quadric_ray import (
+    quadric_coefficients_world,
+    quadric_outlines,
+    quadric_ray_hits,
+)
 from ..surfaces.quadrics import Quadric
 from .views import Views, as_views
 
@@ -216,7 +220,7 @@ class Occlusion:
         #: per asked surface, the nodes holding the same surface in the same place
         #: (their points are its own points: the tie rule for surfaces that have
         #: no implicit equation, such as a ParametricSurface added twice)
-        first = twin_groups(nodes)
+        first = self.first = twin_groups(nodes)
         self.twins = {j: np.flatnonzero(first == first[j]) for j, _, _, _ in self.items}
         self._setup_grid(quads)
         #: per asked surface, its padded box ``(x0, y0, x1, y1)`` in every view
@@ -229,6 +233,7 @@ class Occlusion:
 
     def _setup_grid(self, quads: list) -> None:
         self.nq = len(quads)
+        self._outline_cache: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         if not quads:
             return
         self.q_node = np.array([q[0] for q in quads])
@@ -238,13 +243,45 @@ class Occlusion:
         self.q_eps = np.array([q[5] for q in quads])
         # ellipsoids (A positive definite): a continuous hiding margin exists
         self.q_pd = np.all(np.linalg.eigvalsh(self.q_A) > 0, axis=1)
-        #: per view, the quadrics' projected boxes and the grid over them
-        self.grids = [
-            _BoxGrid(np.array([[*q[1][k][0], *q[1][k][1]] for q in quads]))
-            for k in range(self.views.k)
-        ]
+        #: per view, the quadrics' projected boxes (those of the ellipsoids'
+        #: outlines where tighter) and the grid over them
+        self.grids = []
+        for k in range(self.views.k):
+            box = np.array([[*q[1][k][0], *q[1][k][1]] for q in quads])
+            tight = self.outline_boxes(k)
+            ok = np.isfinite(tight).all(axis=1)
+            box[ok, :2] = np.maximum(box[ok, :2], tight[ok, :2])
+            box[ok, 2:] = np.minimum(box[ok, 2:], tight[ok, 2:])
+            self.grids.append(_BoxGrid(box))
         #: one quadric: its (padded) box in every view, ``(views, 4)``
         self._quadric_boxes = np.array([g.box[0] for g in self.grids])
+
+    def outlines(self, k: int) -> np.ndarray:
+        """The projected outlines of the grouped ellipsoids in view ``k``:
+        one conic ``(nq, 3, 3)`` each, ``[x, y, 1] C [x, y, 1]^T`` positive
+        exactly inside the outline (the image of the ellipsoid), zero on it
+        (the image of its contour); NaN for quadrics that are not
+        ellipsoids (:func:`~lgraph.surfaces._quadric_ray.quadric_outlines`)."""
+        if k not in self._outline_cache:
+            p = self.views.projectors[k]
+            e1, e2, e3 = p.frame
+            # the 3 x 4 camera of the centred coordinates
+            if isinstance(p, CentralProjector):
+                rows = np.array([p.distance * e1, p.distance * e2, -e3])
+                M = np.column_stack([rows, -rows @ (p.eye - self.centre)])
+            else:
+                M = np.zeros((3, 4))
+                M[:2, :3] = e1, e2
+                M[:2, 3] = np.array([e1, e2]) @ self.centre
+                M[2, 3] = 1.0
+            self._outline_cache[k] = quadric_outlines(self.q_A, self.q_b, self.q_d, M, self.q_pd)
+        return self._outline_cache[k][0]
+
+    def outline_boxes(self, k: int) -> np.ndarray:
+        """Tight boxes ``(nq, 4)`` ``(x0, y0, x1, y1)`` of the grouped
+        ellipsoids' outlines in view ``k`` (NaN for other quadrics)."""
+        self.outlines(k)
+        return self._outline_cache[k][1]
 
     def _quadric_pairs(
         self, xy: np.ndarray, view: np.ndarray | None = None

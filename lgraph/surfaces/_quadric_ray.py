@@ -27,7 +27,7 @@ import numpy as np
 from .._own import CONTOUR, ON
 from ..geometry.vectors import dot as _dot
 
-__all__ = ["quadric_ray_hits", "quadric_coefficients_world"]
+__all__ = ["quadric_ray_hits", "quadric_coefficients_world", "quadric_outlines"]
 
 
 def quadric_ray_hits(
@@ -94,3 +94,54 @@ def quadric_coefficients_world(
     """
     R, c = inverse_matrix, inverse_offset
     return R.T @ A @ R, R.T @ (2 * A @ c + b), float(c @ A @ c + b @ c + d)
+
+
+def quadric_outlines(
+    A: np.ndarray, b: np.ndarray, d: np.ndarray, camera: np.ndarray, ellipsoid: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The outlines (apparent contours in the image) of quadrics
+    ``x^T A x + b . x + d = 0`` (``A`` ``(n, 3, 3)``, ``b`` ``(n, 3)``, ``d``
+    ``(n,)``) seen through the 3 x 4 ``camera`` (homogeneous image point of
+    a homogeneous point): conics ``C`` ``(n, 3, 3)`` and their tight boxes
+    ``(n, 4)`` ``(x0, y0, x1, y1)``, for the rows flagged ``ellipsoid`` (NaN
+    elsewhere).  ``[x, y, 1] C [x, y, 1]^T`` is positive exactly inside the
+    outline (the image of the solid) and zero on it.
+
+    With ``Q = [[A, b/2], [b^T/2, d]]`` the outline's dual conic is
+    ``C* = M Q^-1 M^T``; the outline is its inverse, signed by the image of
+    the ellipsoid's centre (inside).  The tangent lines ``x = c`` of the
+    outline are the roots of ``l C* l = 0`` for ``l = (1, 0, -c)``.
+
+    >>> M = np.array([[1.0, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]])  # seen along z
+    >>> sphere = np.eye(3)[None], np.zeros((1, 3)), np.array([-4.0])  # radius 2
+    >>> C, box = quadric_outlines(*sphere, M, np.array([True]))
+    >>> [round(float(p @ C[0] @ p), 6) for p in np.array([[2.0, 0, 1], [0, 0, 1], [3, 0, 1]])]
+    [0.0, 0.942809, -1.178511]
+    >>> box.round(6).tolist()
+    [[-2.0, -2.0, 2.0, 2.0]]
+    """
+    n = len(A)
+    Q = np.empty((n, 4, 4))
+    Q[:, :3, :3] = A
+    Q[:, :3, 3] = Q[:, 3, :3] = 0.5 * b
+    Q[:, 3, 3] = d
+    conic = np.full((n, 3, 3), np.nan)
+    box = np.full((n, 4), np.nan)
+    pd = np.flatnonzero(ellipsoid)
+    if not len(pd):
+        return conic, box
+    M = camera
+    with np.errstate(all="ignore"):
+        dual = M @ np.linalg.inv(Q[pd]) @ M.T
+        C = np.linalg.inv(dual)
+        C /= np.linalg.norm(C, axis=(1, 2))[:, None, None]
+        centre = np.linalg.solve(A[pd], -0.5 * b[pd][:, :, None])[:, :, 0]
+        c = np.column_stack([centre, np.ones(len(pd))]) @ M.T
+        conic[pd] = C * np.sign(np.einsum("ni,nij,nj->n", c, C, c))[:, None, None]
+        for axis in (0, 1):  # the tangent lines x = c, then y = c
+            a, h, w = dual[:, axis, axis], dual[:, axis, 2], dual[:, 2, 2]
+            root = np.sqrt(np.maximum(h * h - a * w, 0.0))
+            ends = np.sort(np.column_stack([(h - root) / w, (h + root) / w]), axis=1)
+            box[pd, axis], box[pd, axis + 2] = ends[:, 0], ends[:, 1]
+    pad = 1e-9 * (box[:, 2] - box[:, 0] + box[:, 3] - box[:, 1])[:, None]
+    return conic, box + pad * np.array([-1, -1, 1, 1])
