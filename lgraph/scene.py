@@ -82,6 +82,7 @@ class Node:
     style: Style | dict[str, Style] = attrs.field(default=None, converter=_style)
     contour: bool = True
     hides: bool = True
+    intersections: bool = True
 
     @property
     def surface(self) -> Surface | None:
@@ -149,6 +150,7 @@ class Scene:
         style: Style | dict[str, Style] | None = None,
         contour: bool = True,
         hides: bool = True,
+        intersections: bool = True,
     ) -> Any:
         """Add a surface or curve with the given line families, a label, a
         point mark, or another scene (a group).
@@ -157,7 +159,10 @@ class Scene:
         (:class:`ParameterLines` for most).  Every surface draws its contour
         and the edges of its drawn patch (family ``"boundary"``) unless
         ``contour=False``; ``hides=False`` makes a surface transparent (its
-        lines are drawn, it hides nothing).
+        lines are drawn, it hides nothing).  Where two surfaces meet, the
+        curves where they cut each other are drawn too (family
+        ``"intersection"``, on the surface added first) unless either was
+        added with ``intersections=False`` or the render asks for none.
 
         A :class:`Scene` is added as a group (returns a :class:`Group`): its
         members are moved by ``transform`` after their own transforms, and
@@ -195,12 +200,16 @@ class Scene:
                     "Scene.add: families must be line families such as lg.ParameterLines(8, 16), "
                     f"got {type(f).__name__}"
                 )
-        for flag, value in (("contour", contour), ("hides", hides)):
+        for flag, value in (
+            ("contour", contour),
+            ("hides", hides),
+            ("intersections", intersections),
+        ):
             if not isinstance(value, bool):
                 raise TypeError(f"Scene.add: {flag} must be True or False, got {value!r}")
         if isinstance(item, Surface) and not families:
             families = tuple(FAMILIES[name]() for name in item.default_families)
-        node = Node(item, tuple(families), transform, style, contour, hides)
+        node = Node(item, tuple(families), transform, style, contour, hides, intersections)
         if style is None:
             self._unstyled.add(id(node))
         self._entries.append(node)
@@ -317,6 +326,7 @@ class Scene:
         tolerance: float = CHORD_TOLERANCE,
         page: Page | tuple[float, float] | None = None,
         hidden_style: Style | None = None,
+        intersections: bool = True,
     ) -> Drawing:
         """Render the scene: sample, test visibility, split at exact transitions.
 
@@ -333,6 +343,10 @@ class Scene:
             Page geometry; default crops the page to the figure.
         hidden_style : Style, optional
             Style of hidden parts (default thin, grey, dashed).
+        intersections : bool
+            Draw the curves where the surfaces of two nodes meet (family
+            ``"intersection"``, on the node added first; default True).
+            A node added with ``intersections=False`` draws none.
         """
         from .render import render
 
@@ -343,4 +357,5 @@ class Scene:
             tolerance=tolerance,
             page=page,
             hidden_style=hidden_style,
+            intersections=intersections,
         )

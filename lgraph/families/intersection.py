@@ -39,8 +39,10 @@ def _correct(a: Any, b: Any, z: np.ndarray, steps: int = 8, tol: float = 1e-13) 
             break
         J = np.concatenate([_jac(a, z[:, :2]), -_jac(b, z[:, 2:])], axis=2)  # (n, 3, 4)
         JJt = J @ J.transpose(0, 2, 1)
+        # regularized relative to the scale of J (a cone's apex makes J J^T singular)
+        reg = 1e-14 * np.trace(JJt, axis1=1, axis2=2)[:, None, None] + 1e-300
         with np.errstate(all="ignore"):
-            y = np.linalg.solve(JJt + 1e-300 * np.eye(3), F[..., None])
+            y = np.linalg.solve(JJt + reg * np.eye(3), F[..., None])
         dz = (J.transpose(0, 2, 1) @ y)[..., 0]
         ok = act & np.isfinite(dz).all(axis=1)
         z[ok] -= dz[ok]

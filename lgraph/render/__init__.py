@@ -40,6 +40,7 @@ from ..projectors import CentralProjector, ParallelProjector, Projector
 from ..style import HIDDEN_STYLE, OUTLINE, Style
 from .crossings import seed_net_crossings
 from .flips import locate_flips, seed_crossings
+from .intersections import intersection_batches
 from .occlusion import NotBatchable, Occlusion, twin_groups
 from .sampling import Samples, check_points, refine
 from .views import Views
@@ -205,6 +206,7 @@ def render(
     tolerance: float = tol.CHORD_TOLERANCE,
     page: Page | tuple[float, float] | None = None,
     hidden_style: Style | None = None,
+    intersections: bool = True,
 ) -> Drawing:
     """Render ``scene`` as seen by ``projector`` (see :meth:`lgraph.Scene.render`)."""
     if not isinstance(projector, Projector):
@@ -212,7 +214,7 @@ def render(
             "Scene.render: projector must be a ParallelProjector or CentralProjector, "
             f"got {type(projector).__name__}"
         )
-    options = _checked_options(hidden_lines, tolerance, page, hidden_style)
+    options = _checked_options(hidden_lines, tolerance, page, hidden_style, intersections)
     return _render(scene, Views([projector]), *options)[0]
 
 
@@ -225,6 +227,7 @@ def render_views(
     page: Page | tuple[float, float] | None = None,
     hidden_style: Style | None = None,
     chord: float | None = None,
+    intersections: bool = True,
 ) -> list[Drawing]:
     """Render ``scene`` from every projector in one pass (the frames of an
     animation): one drawing per projector, the drawing :func:`render` gives
@@ -260,7 +263,7 @@ def render_views(
             )
     if not projectors:
         return []
-    options = _checked_options(hidden_lines, tolerance, page, hidden_style)
+    options = _checked_options(hidden_lines, tolerance, page, hidden_style, intersections)
     if chord is not None:
         options = (*options, positive_finite("render_views", "chord", chord))
     try:
@@ -270,8 +273,12 @@ def render_views(
 
 
 def _checked_options(
-    hidden_lines: object, tolerance: object, page: object, hidden_style: object
-) -> tuple[bool, float, Page | None, Style]:
+    hidden_lines: object,
+    tolerance: object,
+    page: object,
+    hidden_style: object,
+    intersections: object = True,
+) -> tuple[bool, float, Page | None, Style, bool]:
     """The render options, checked (errors name the bad one)."""
     tolerance = as_number(tolerance)
     if not (
@@ -284,8 +291,9 @@ def _checked_options(
             f"Scene.render: tolerance must be a number in [{tol.MIN_CHORD_TOLERANCE:g}, 0.1] "
             f"(a fraction of the figure's diagonal), got {tolerance!r}"
         )
-    if not isinstance(hidden_lines, (bool, np.bool_)):
-        raise TypeError(f"Scene.render: hidden_lines must be True or False, got {hidden_lines!r}")
+    for name, flag in (("hidden_lines", hidden_lines), ("intersections", intersections)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise TypeError(f"Scene.render: {name} must be True or False, got {flag!r}")
     if hidden_style is not None and not isinstance(hidden_style, Style):
         raise TypeError(
             "Scene.render: hidden_style must be a Style (e.g. lg.Style(color='grey', "
@@ -293,7 +301,7 @@ def _checked_options(
         )
     page = _checked_page(page)
     hidden_style = HIDDEN_STYLE if hidden_style is None else hidden_style
-    return bool(hidden_lines), tolerance, page, hidden_style
+    return bool(hidden_lines), tolerance, page, hidden_style, bool(intersections)
 
 
 def _render(
@@ -303,6 +311,7 @@ def _render(
     tolerance: float,
     page: Page | None,
     hidden_style: Style,
+    intersections: bool,
     chord: float | None = None,
 ) -> list[Drawing]:
     """The pipeline (module docstring) for every view at once; chords within
@@ -314,6 +323,11 @@ def _render(
         scene.view_batches(node, [local_projector(p, node.transform) for p in views.projectors])
         for node in drawn
     ]
+    # the curves where two surfaces meet, drawn on one of them, lie on both
+    partner: dict[int, int] = {}  # id of such a batch -> the other node
+    for ni, extra in (intersection_batches(nodes, first) if intersections else {}).items():
+        per_node[ni] = [[*in_view, *(b for b, _ in extra)] for in_view in per_node[ni]]
+        partner.update((id(b), other) for b, other in extra)
     batches = [
         (ni, b, nodes[ni].transform, k)
         for k in range(views.k)
@@ -354,7 +368,8 @@ def _render(
         abs_tol = [
             chord if d <= 0 else min(max(chord, tol.MIN_CHORD_TOLERANCE * d), 0.1 * d) for d in diag
         ]
-    vis = Occlusion(nodes, views)
+    shared = _shared_owners(s, partner, len(nodes))
+    vis = Occlusion(nodes, views, shared)
     _classify(s, vis)
     seed_crossings(s, vis)
     settled = None if hidden_lines else _self_hidden(s, vis)
@@ -369,6 +384,20 @@ def _render(
         _with_marks(scene, strokes[k], nodes, p, hidden_lines, hidden_style, page, vis, k)
         for k, p in enumerate(views.projectors)
     ]
+
+
+def _shared_owners(s: Samples, partner: dict[int, int], n: int) -> list[tuple[int, int]]:
+    """Give the curves that lie on two nodes (``partner``: id of their batch
+    -> the other node) the owner ``n + k`` of pair ``k`` (see
+    :class:`~lgraph.render.occlusion.Occlusion`); returns the pairs."""
+    pairs: dict[tuple[int, int], int] = {}
+    for part in s.parts:
+        other = partner.get(id(part.batch))
+        if other is None:
+            continue
+        k = pairs.setdefault((part.node, other), len(pairs))
+        s.owner[part.first : part.first + len(part.batch)] = n + k
+    return list(pairs)
 
 
 def _with_marks(

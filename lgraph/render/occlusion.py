@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -182,11 +182,25 @@ class Occlusion:
     i.e. within about ``COINCIDENT_RTOL`` times the quadric's size) is tested
     against that quadric as if it were its own (same ownership code): the
     same sphere added twice hides exactly what one of them hides, never a
-    random half of the points by round-off.
+    random half of the points by round-off.  Points known to lie on two
+    surfaces (intersection curves) carry an owner ``len(nodes) + k`` that
+    stands for both nodes of ``shared[k]``: they are their own points on
+    both, whatever the round-off (a scene far from the origin).
     """
 
-    def __init__(self, nodes: tuple[Node, ...], projector: Projector | Views) -> None:
+    def __init__(
+        self,
+        nodes: tuple[Node, ...],
+        projector: Projector | Views,
+        shared: Sequence[tuple[int, int]] = (),
+    ) -> None:
         self.views = views = as_views(projector)
+        # owners of points on two surfaces (intersection curves): owner
+        # ``len(nodes) + k`` lies on both nodes of ``shared[k]``
+        pairs = np.asarray(shared, dtype=np.int64).reshape(-1, 2)
+        n = len(nodes)
+        self._on_first = np.concatenate([[-1], np.arange(n), pairs[:, 0]])
+        self._on_second = np.concatenate([[-1], np.full(n, -1), pairs[:, 1]])
         self.items = []  # (node index, surface, inverse transform, boxes) asked one by one
         quads = []  # (node index, boxes, A_w, b_w, d_w, eps) tested together
         hiding = [(j, n) for j, n in enumerate(nodes) if n.surface is not None and n.hides]
@@ -338,7 +352,7 @@ class Occlusion:
         for j, surf, inv, idx in self._in_boxes(xy, view):
             if not len(idx):
                 continue
-            mine = np.isin(owner[idx], self.twins[j])
+            mine = self._on(owner[idx], self.twins[j])
             own = np.where(mine, kind[idx], OFF).astype(np.int8)
             o = inv.apply(xyz[idx])
             tie = np.flatnonzero(~mine & (kind[idx] != OFF))
@@ -390,7 +404,7 @@ class Occlusion:
         if len(xyz) and self.items:
             dirs, smax = self.views.rays(xyz, view)
             for j, surf, inv, _ in self.items:
-                idx = np.flatnonzero(np.isin(owner, self.twins[j]) & (kind != OFF))
+                idx = np.flatnonzero(self._on(owner, self.twins[j]) & (kind != OFF))
                 if not len(idx):
                     continue
                 m = surf.visibility_margins(
@@ -408,12 +422,18 @@ class Occlusion:
             out[: len(m), idx] = m
         return out
 
+    def _on(self, owner: np.ndarray, nodes: np.ndarray) -> np.ndarray:
+        """Which points of owners ``owner`` lie on one of ``nodes``."""
+        first, second = self._on_first[owner + 1], self._on_second[owner + 1]
+        return np.isin(first, nodes) | np.isin(second, nodes)
+
     def _owned(
         self, o: np.ndarray, q: np.ndarray, owner: np.ndarray, kind: np.ndarray, coef: tuple
     ) -> np.ndarray:
         """Which (centred point, quadric) pairs count as the point's own surface:
         its own node's, or one it lies on (the tie rule for coincident surfaces)."""
-        own = owner == self.q_node[q]
+        node = self.q_node[q]
+        own = (self._on_first[owner + 1] == node) | (self._on_second[owner + 1] == node)
         tie = ~own & (kind != OFF)
         if not tie.any():
             return own

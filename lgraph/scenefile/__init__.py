@@ -44,6 +44,7 @@ The format::
     style = { color = "#000000", width = 0.5 }   # or per family: style.contour = {...}
     contour = true               # draw the contour (default true)
     hides = true                 # hide what lies behind (default true)
+    intersections = true         # draw where it cuts other surfaces (default true)
 
     [[labels]]                   # text at a 3-D point, hidden like the lines
     text = "$\\kappa_1$"          # $...$ is TeX mathematics
@@ -75,7 +76,8 @@ table           keys
                 ``margin``; or ``width`` and ``height`` (pt, both), ``margin``,
                 ``extent``.  Optional: the default crops the page to the figure.
 ``render``      ``hidden_lines`` (bool), ``tolerance`` (1e-9 to 0.1 of the figure's
-                diagonal), ``hidden_style`` (a style table).  Optional.
+                diagonal), ``hidden_style`` (a style table), ``intersections``
+                (bool, default true: draw where surfaces cut each other).  Optional.
 ``save``        ``width``, ``height`` (a physical size such as ``"8.5cm"``, any format)
                 and the options of the output's backend (see
                 :func:`lgraph.backends.backend_options`).  Optional.
@@ -86,7 +88,8 @@ table           keys
                 (an array of ``{ translate = [x, y, z] }``, ``{ rotate = { axis =
                 "x" | "y" | "z" | [x, y, z], degrees = d } }``, ``{ scale = s | [sx,
                 sy, sz] }``), ``style`` (a style table, or one per family name with
-                ``default`` for the rest), ``contour`` and ``hides`` (bools).
+                ``default`` for the rest), ``contour``, ``hides`` and
+                ``intersections`` (bools).
 ``[[labels]]``  ``text`` and ``at`` (required), ``offset``, ``anchor``, ``size``,
                 ``color``, ``always``.
 ``[[points]]``  ``at`` (required), ``size``, ``color``, ``always``.

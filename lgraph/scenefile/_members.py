@@ -28,7 +28,16 @@ from ._values import (
     _vector,
 )
 
-_OBJECT = ("surface", "params", "families", "transform", "style", "contour", "hides")
+_OBJECT = (
+    "surface",
+    "params",
+    "families",
+    "transform",
+    "style",
+    "contour",
+    "hides",
+    "intersections",
+)
 
 
 def _object(
@@ -59,7 +68,7 @@ def _object(
         kw["transform"] = check(_transform, key + ("transform",), obj["transform"])
     if "style" in obj:
         kw["style"] = check(_styles, key + ("style",), obj["style"])
-    for flag in ("contour", "hides"):
+    for flag in ("contour", "hides", "intersections"):
         if flag in obj:
             kw[flag] = check(_boolean, key + (flag,), obj[flag])
     if any(f is None for f in families) or any(v is None for v in kw.values()):

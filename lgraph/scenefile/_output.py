@@ -62,10 +62,11 @@ def _projector(key: Key, p: Any) -> Any:
 
 
 def _render(key: Key, r: dict[str, Any]) -> dict[str, Any]:
-    _only(key, r, ("hidden_lines", "tolerance", "hidden_style"))
+    _only(key, r, ("hidden_lines", "tolerance", "hidden_style", "intersections"))
     out: dict[str, Any] = {}
-    if "hidden_lines" in r:
-        out["hidden_lines"] = _boolean(key + ("hidden_lines",), r["hidden_lines"])
+    for flag in ("hidden_lines", "intersections"):
+        if flag in r:
+            out[flag] = _boolean(key + (flag,), r[flag])
     if "tolerance" in r:
         from .._tolerance import MIN_CHORD_TOLERANCE
 
