@@ -134,7 +134,14 @@ class _Job:
         )
         if self.kind == "drawing":  # only what a page needs: no xyz, uv, surface
             slim = tuple(
-                Stroke(s.xy, np.empty((0, 3)), visible=s.visible, family=s.family, style=s.style)
+                Stroke(
+                    s.xy,
+                    np.empty((0, 3)),
+                    visible=s.visible,
+                    family=s.family,
+                    style=s.style,
+                    occlusion=s.occlusion,
+                )
                 for s in d.strokes
             )
             return attrs.evolve(d, strokes=slim)

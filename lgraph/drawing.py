@@ -60,6 +60,15 @@ class Stroke:
         The surface the stroke lies on.
     style : Style
         Colour, width and dash pattern.
+    occlusion : int
+        0 for a visible stroke; for a hidden one, the number of surface
+        sheets between it and the eye (its ray's crossings with the
+        surfaces: 1 behind the near side of a sphere, 2 behind a whole
+        sphere).  Hidden strokes are split where it changes.  Exact where
+        the surfaces count their crossings (quadrics, planes, tori and
+        cyclides, parametric surfaces with the numeric ray test: their
+        ``hit_count``); a class with a ray test of its own but no count
+        (ruled surfaces, surfaces of revolution, ...) counts once.
     """
 
     xy: np.ndarray = attrs.field(converter=np.asarray)
@@ -69,6 +78,7 @@ class Stroke:
     family: str = "curve"
     surface: Any = None
     style: Style = Style()
+    occlusion: int = 0
 
     def __len__(self) -> int:
         return len(self.xy)

@@ -4,7 +4,10 @@ Pen-plotter tools (vpype, AxiDraw, Inkscape) and TeX styles want the strokes
 of a figure in named groups, one colour and line width per group.  A layer is
 a family of curves (``layers="family"``: ``contour``, ``u1``, ``curvature``,
 ...) or a surface (``layers="surface"``: ``ellipsoid``, ``sphere-2``, free
-curves in ``curves``); hidden parts always get their own layer (``hidden``).
+curves in ``curves``); hidden parts always get their own layer (``hidden``),
+or with ``layers="occlusion"`` one layer per occlusion depth (``visible``,
+``hidden-1``, ``hidden-2``, ...: ``Stroke.occlusion``), so that a
+plotter can draw what lies behind one sheet and leave the rest.
 Strokes of one group drawn in different styles are split into several layers
 (``u1``, ``u1-2``; per surface ``ellipsoid``, ``ellipsoid-contour``), so every
 layer has exactly one style.  With
@@ -24,7 +27,7 @@ and never start with ``%`` or ``!`` (AxiDraw reads those as commands).
 >>> drawing_layers(d, "pens")
 Traceback (most recent call last):
 ...
-ValueError: layers must be 'family', 'surface' or None, got 'pens'
+ValueError: layers must be 'family', 'surface', 'occlusion' or None, got 'pens'
 """
 
 from __future__ import annotations
@@ -34,11 +37,19 @@ from collections.abc import Iterable
 from typing import Any
 
 import attrs
+import numpy as np
 
-__all__ = ["Layer", "LAYER_MODES", "check_layer_mode", "drawing_layers", "layer_keys"]
+__all__ = [
+    "Layer",
+    "LAYER_MODES",
+    "check_layer_mode",
+    "drawing_layers",
+    "join_continued",
+    "layer_keys",
+]
 
 #: Accepted values of every ``layers=`` option.
-LAYER_MODES = ("family", "surface", None)
+LAYER_MODES = ("family", "surface", "occlusion", None)
 
 
 @attrs.frozen(eq=False)
@@ -59,7 +70,8 @@ class Layer:
 
 
 def check_layer_mode(value: Any, owner: str = "layers") -> str | None:
-    """Validate a ``layers=`` option: ``"family"``, ``"surface"`` or None.
+    """Validate a ``layers=`` option: ``"family"``, ``"surface"``,
+    ``"occlusion"`` or None.
 
     >>> check_layer_mode("surface")
     'surface'
@@ -67,7 +79,9 @@ def check_layer_mode(value: Any, owner: str = "layers") -> str | None:
     if value is None or (isinstance(value, str) and value in LAYER_MODES):
         return value
     prefix = "" if owner == "layers" else f"{owner}: "
-    raise ValueError(f"{prefix}layers must be 'family', 'surface' or None, got {value!r}")
+    raise ValueError(
+        f"{prefix}layers must be 'family', 'surface', 'occlusion' or None, got {value!r}"
+    )
 
 
 def _clean(name: str) -> str:
@@ -82,7 +96,9 @@ def _group_names(strokes: Iterable[Any], mode: str | None) -> list[str]:
     taken: dict[str, int] = {}
     out = []
     for s in strokes:
-        if not s.visible:
+        if mode == "occlusion":
+            out.append(f"hidden-{max(int(s.occlusion), 1)}" if not s.visible else "visible")
+        elif not s.visible:
             out.append("hidden")
         elif mode == "family":
             out.append(_clean(s.family))
@@ -154,3 +170,37 @@ def drawing_layers(drawing: Any, mode: str | None = "family") -> list[Layer]:
         Layer(number=i + 1, name=name, style=group[0][1].style, runs=tuple(group))
         for i, (name, group) in enumerate(members.items())
     ]
+
+
+def join_continued(strokes: list, scale: float, keep_depth: bool) -> list:
+    """Consecutive strokes that continue one line -- one family, surface,
+    visibility and style, the second starting within 1e-6 pt of the page
+    where the first ends: a hidden line split where the number of sheets in
+    front changes -- joined into one (with the first one's ``occlusion``),
+    so that they are one path to the plotter; kept apart with
+    ``keep_depth`` (layers per occlusion depth)."""
+    out: list = []
+    for t in strokes:
+        s = out[-1] if out else None
+        if (
+            s is not None
+            and not t.visible
+            and not s.visible
+            and s.family == t.family
+            and s.surface is t.surface
+            and s.style == t.style
+            and (not keep_depth or s.occlusion == t.occlusion)
+            and len(s.xy)
+            and len(t.xy)
+            and float(np.linalg.norm(np.asarray(s.xy[-1]) - t.xy[0])) * scale <= 1e-6
+        ):
+            uv = None if s.uv is None or t.uv is None else np.concatenate([s.uv, t.uv[1:]])
+            out[-1] = attrs.evolve(
+                s,
+                xy=np.concatenate([s.xy, t.xy[1:]]),
+                xyz=np.concatenate([s.xyz, t.xyz[1:]]) if len(s.xyz) and len(t.xyz) else s.xyz,
+                uv=uv,
+            )
+        else:
+            out.append(t)
+    return out

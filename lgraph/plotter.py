@@ -47,7 +47,7 @@ import attrs
 import numpy as np
 
 from ._tolerance import DUPLICATE_MIN_END
-from .layers import check_layer_mode, layer_keys
+from .layers import check_layer_mode, join_continued, layer_keys
 from .units import UNITS, length_pt, to_unit
 
 __all__ = ["for_plotter", "pen_up_length", "plotter_length"]
@@ -357,7 +357,7 @@ def for_plotter(
         raise ValueError(f"for_plotter: sort must be True or False, got {sort!r}")
     mode = check_layer_mode(layers, "for_plotter")
     scale, offset, _, _ = drawing._layout()
-    strokes = list(drawing.strokes)
+    strokes = join_continued(list(drawing.strokes), scale, keep_depth=mode == "occlusion")
     runs = _runs(strokes)
     if not runs:
         return _same_layout(drawing, ())

@@ -29,7 +29,7 @@ from .families import FAMILIES, Contour, Family
 from .families.cache import family_batches
 from .geometry.transforms import IDENTITY, Transform
 from .page import Page
-from .style import OUTLINE, Style
+from .style import OUTLINE, HiddenStyle, Style
 from .surfaces._base import Surface
 
 if TYPE_CHECKING:
@@ -325,7 +325,7 @@ class Scene:
         *,
         tolerance: float = CHORD_TOLERANCE,
         page: Page | tuple[float, float] | None = None,
-        hidden_style: Style | None = None,
+        hidden_style: HiddenStyle | None = None,
         intersections: bool = True,
     ) -> Drawing:
         """Render the scene: sample, test visibility, split at exact transitions.
@@ -341,8 +341,14 @@ class Scene:
             as a fraction of the figure's diagonal.
         page : Page or (width, height) in pt, optional
             Page geometry; default crops the page to the figure.
-        hidden_style : Style, optional
-            Style of hidden parts (default thin, grey, dashed).
+        hidden_style : Style, mapping or callable, optional
+            Style of hidden parts (default thin, grey, dashed): one
+            :class:`Style` for all; a mapping from family names to styles
+            (``"default"`` for the rest; None: not drawn); or a callable
+            ``(family, occlusion) -> Style | None``, where ``occlusion`` is the
+            number of surface sheets in front (``Stroke.occlusion``), so
+            that ``lambda f, k: thin if k == 1 else None`` draws what is hidden
+            once and leaves out what lies deeper.
         intersections : bool
             Draw the curves where the surfaces of two nodes meet (family
             ``"intersection"``, on the node added first; default True).

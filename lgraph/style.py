@@ -11,13 +11,22 @@ backends and the renderer can use styles without importing each other.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import attrs
 
 from ._validate import finite_positive
 
-__all__ = ["Style", "HIDDEN_STYLE", "OUTLINE", "ANCHORS"]
+__all__ = [
+    "Style",
+    "HIDDEN_STYLE",
+    "OUTLINE",
+    "ANCHORS",
+    "HiddenStyle",
+    "HiddenStyles",
+    "hidden_style_rule",
+]
 
 #: Families drawn as a surface's outline (1.6 times as wide as its other lines).
 OUTLINE = ("contour", "boundary")
@@ -119,3 +128,86 @@ ANCHORS: dict[str, tuple[float, float]] = {
     "w": (0.0, 0.5),
     "nw": (0.0, 1.0),
 }
+
+
+@attrs.frozen
+class HiddenStyles:
+    """A ``hidden_style`` rule that can be pickled (for animations on worker
+    processes and scene files): hidden strokes styled per family, with
+    ``default`` for the others, and not drawn where more than
+    ``max_occlusion`` sheets lie in front (None: no limit).
+
+    >>> rule = HiddenStyles({"contour": Style(width=0.2)}, max_occlusion=1)
+    >>> rule("contour", 1).width, rule("u1", 1) == HIDDEN_STYLE, rule("u1", 2)
+    (0.2, True, None)
+    """
+
+    styles: Mapping[str, Style | None] = attrs.field(factory=dict, converter=dict)
+    default: Style | None = None
+    max_occlusion: int | None = None
+
+    def __call__(self, family: str, occlusion: int) -> Style | None:
+        if self.max_occlusion is not None and occlusion > self.max_occlusion:
+            return None
+        default = HIDDEN_STYLE if self.default is None else self.default
+        return self.styles.get(family, default)
+
+
+#: what ``hidden_style=`` accepts: one style, one per family, or a rule
+HiddenStyle = Style | Mapping[str, Style | None] | Callable[[str, int], Style | None]
+
+
+def hidden_style_rule(spec: Any, owner: str = "Scene.render") -> Callable[[str, int], Style | None]:
+    """``hidden_style=`` as a rule ``(family, occlusion) -> Style | None``
+    (None: the hidden stroke is not drawn).
+
+    ``spec`` is None (:data:`HIDDEN_STYLE` for every hidden stroke), a
+    :class:`Style` (for every one), a mapping from family names to styles or
+    None (the key ``"default"``, else :data:`HIDDEN_STYLE`, for families it
+    does not name), or a callable ``(family, occlusion)`` returning a style or
+    None; ``occlusion`` is the number of sheets in front
+    (``Stroke.occlusion``, 1 or more).
+
+    >>> thin = Style(width=0.2, dash=(1, 1))
+    >>> rule = hidden_style_rule(lambda family, occlusion: thin if occlusion == 1 else None)
+    >>> rule("u1", 1) is thin, rule("u1", 2)
+    (True, None)
+    >>> hidden_style_rule({"contour": thin})("contour", 3) is thin
+    True
+    >>> hidden_style_rule({"contour": "thin"})
+    Traceback (most recent call last):
+    ...
+    TypeError: Scene.render: hidden_style['contour'] must be a Style or None, got 'thin'
+    """
+    if spec is None or isinstance(spec, Style):
+        style = HIDDEN_STYLE if spec is None else spec
+        return lambda family, occlusion: style
+    if isinstance(spec, Mapping):
+        table: dict[str, Style | None] = {}
+        for key, value in spec.items():
+            if not isinstance(key, str):
+                raise TypeError(f"{owner}: hidden_style keys must be family names, got {key!r}")
+            if value is not None and not isinstance(value, Style):
+                raise TypeError(
+                    f"{owner}: hidden_style[{key!r}] must be a Style or None, got {value!r}"
+                )
+            table[key] = value
+        default = table.get("default", HIDDEN_STYLE)
+        return lambda family, occlusion: table.get(family, default)
+    if callable(spec):
+
+        def rule(family: str, occlusion: int) -> Style | None:
+            style = spec(family, occlusion)
+            if style is not None and not isinstance(style, Style):
+                raise TypeError(
+                    f"{owner}: hidden_style({family!r}, {occlusion}) must return a Style or "
+                    f"None, got {style!r}"
+                )
+            return style
+
+        return rule
+    raise TypeError(
+        f"{owner}: hidden_style must be a Style (e.g. lg.Style(color='grey', dash=(2, 1.5))), "
+        "a mapping from family names to styles, a callable (family, occlusion) -> Style or "
+        f"None, or None; got {spec!r}"
+    )

@@ -250,7 +250,7 @@ def test_bad_options_are_refused() -> None:
         ({"merge": "0.1 furlong"}, "merge must be a length >= 0"),
         ({"min_length": float("nan")}, "min_length must be a length >= 0"),
         ({"sort": "yes"}, "sort must be True or False"),
-        ({"layers": "pens"}, "layers must be 'family', 'surface' or None"),
+        ({"layers": "pens"}, "layers must be 'family', 'surface', 'occlusion' or None"),
     ]:
         with pytest.raises(ValueError, match=msg):
             d.for_plotter(**kw)

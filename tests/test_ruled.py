@@ -363,8 +363,11 @@ def check_visibility(scene, projector, meshes, npts=400, seed=0):
     d = scene.render(projector, hidden_lines=True, tolerance=5e-4)
     xy = np.concatenate([s.xy for s in d.strokes])
     diag = np.linalg.norm(xy.max(0) - xy.min(0))
-    # stay away from transitions: stroke ends and every contour (incl. patch edges)
-    avoid = [s.xy[[0, -1]] for s in d.strokes] + [s.xy for s in d.strokes if s.family == "contour"]
+    # stay away from transitions: ends of visible strokes (a hidden stroke also
+    # ends where the number of sheets in front changes, still hidden) and every
+    # contour (incl. patch edges)
+    avoid = [s.xy[[0, -1]] for s in d.strokes if s.visible]
+    avoid += [s.xy for s in d.strokes if s.family == "contour"]
     tree = cKDTree(np.concatenate(avoid))
     pts, vis = [], []
     for s in d.strokes:

@@ -108,7 +108,7 @@ def test_width_in_mm_scales_the_page_not_the_lines(tmp_path: Path) -> None:
         ({"width": "-3mm"}, "width must be a positive length"),
         ({"width": "3 furlongs"}, "width must be a positive length"),
         ({"height": 0}, "height must be a positive length"),
-        ({"layers": "pen"}, "layers must be 'family', 'surface' or None"),
+        ({"layers": "pen"}, "layers must be 'family', 'surface', 'occlusion' or None"),
     ],
 )
 def test_bad_options_write_nothing(tmp_path: Path, kw: dict, msg: str) -> None:

@@ -94,7 +94,7 @@ def write_svg(
         File to write (whatever its suffix).
     precision : int, default 3
         Decimals of the point coordinates (in pt).
-    layers : "family" (default), "surface" or None
+    layers : "family" (default), "surface", "occlusion" or None
         One Inkscape layer per family (hidden parts in a layer ``hidden``), per
         surface, or no groups at all (every polyline styled on its own).
     Notes

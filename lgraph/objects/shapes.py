@@ -103,6 +103,16 @@ class Parallelogram(Surface):
 
         return [CurveBatch.from_uv(self, "contour", [0.0], [4.0], uv, closed=True, own=CONTOUR)]
 
+    def hit_count(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """A plane is crossed at most once: ``hits`` as a count."""
+        return self.hits(origins, directions, smax, own).astype(np.int64)
+
     def hits(
         self,
         origins: np.ndarray,

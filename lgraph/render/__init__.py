@@ -16,8 +16,12 @@
    not missed;
 5. where visibility flips between two samples, the flip is located to near
    machine precision on the curve parameter (:mod:`lgraph.render.flips`);
-6. runs of equal visibility become strokes;
-7. labels and point marks are placed and hidden like the lines
+6. with hidden lines, every hidden sample counts the surface sheets in
+   front of it, and where the count changes along a curve the change is
+   located like a flip (:mod:`lgraph.render.depth`);
+7. runs of equal visibility and depth become strokes, hidden ones styled by
+   the ``hidden_style`` rule;
+8. labels and point marks are placed and hidden like the lines
    (:mod:`lgraph.render.marks`).
 """
 
@@ -25,7 +29,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import attrs
@@ -37,12 +41,14 @@ from ..drawing import Drawing, Stroke
 from ..geometry.transforms import Transform
 from ..page import Page, _page
 from ..projectors import CentralProjector, ParallelProjector, Projector
-from ..style import HIDDEN_STYLE, OUTLINE, Style
+from ..style import OUTLINE, HiddenStyle, Style, hidden_style_rule
 from .crossings import seed_net_crossings
+from .depth import occlusion_depth
 from .flips import locate_flips, seed_crossings
-from .intersections import intersection_batches
-from .occlusion import NotBatchable, Occlusion, twin_groups
+from .intersections import intersection_batches, meeting_pairs
+from .occlusion import NotBatchable, Occlusion
 from .sampling import Samples, check_points, refine
+from .twins import twin_groups
 from .views import Views
 
 if TYPE_CHECKING:
@@ -75,28 +81,32 @@ def _strokes(
     s: Samples,
     nodes: tuple[Node, ...],
     hidden_lines: bool,
-    hidden_style: Style,
+    rule: Callable[[str, int], Style | None],
     min_extent: list[float],
+    depth: np.ndarray,
 ) -> list[list[Stroke]]:
-    """Split samples into runs of equal visibility, one stroke per run; the
-    strokes of each view.
+    """Split samples into runs of equal visibility and occlusion depth
+    (``depth``, per sample), one stroke per run; the strokes of each view.
+    Hidden runs are styled by ``rule(family, depth)`` and dropped where it
+    gives None.
 
     The last run of a closed curve joins its first when both have one state.
     Runs whose projection is smaller than ``min_extent`` of their view
     (degenerate curves such as a parameter circle through a cone's vertex)
     are dropped."""
     n = len(s.t)
-    brk = np.flatnonzero((s.cid[1:] != s.cid[:-1]) | (s.hidden[1:] != s.hidden[:-1])) + 1
+    brk = np.flatnonzero((s.cid[1:] != s.cid[:-1]) | (depth[1:] != depth[:-1])) + 1
     starts = np.concatenate([[0], brk])
     ends = np.concatenate([brk, [n]])
     # projected extent of every run at once
     extent = np.max(np.maximum.reduceat(s.xy, starts) - np.minimum.reduceat(s.xy, starts), axis=1)
-    run_cid, run_hidden = s.cid[starts], s.hidden[starts]
+    run_cid, run_depth = s.cid[starts], depth[starts]
+    run_hidden = run_depth > 0
     new_curve = run_cid[1:] != run_cid[:-1]
     first = np.flatnonzero(np.concatenate([[True], new_curve]))  # first run of each curve
     last = np.flatnonzero(np.concatenate([new_curve, [True]]))
     join = (last != first) & s.closed[run_cid[first]]
-    join &= run_hidden[first] == run_hidden[last]
+    join &= run_depth[first] == run_depth[last]
     partner = np.full(len(starts), -1)  # last run of a closed curve -> its first run
     partner[last[join]] = first[join]
     keep = np.ones(len(starts), dtype=bool)
@@ -125,31 +135,40 @@ def _strokes(
     # a style depends on the batch's own style, the node and the family: the
     # same for a batch (or a node's contour) in every view
     styles: dict[tuple[int, int, str], Style] = {}
+    hidden_styles: dict[tuple[str, int], Style | None] = {}
     out: list[list[Stroke]] = [[] for _ in min_extent]
-    for k, (c, p, hid, v) in enumerate(
+    for k, (c, p, dep, v) in enumerate(
         zip(
             run_cid[rows].tolist(),
             s.part[run_cid[rows]].tolist(),
-            run_hidden[rows].tolist(),
+            run_depth[rows].tolist(),
             run_view[rows].tolist(),
         )
     ):
         batch, node, _, first_id = s.parts[p]
         names = batch.curve_family
         family = batch.family if names is None else names[c - first_id]
-        key = (id(batch.style), node, family)
-        style = styles.get(key)
-        if style is None:
-            style = styles[key] = batch.style or nodes[node].style_for(family)
+        if dep:
+            if (family, dep) not in hidden_styles:
+                hidden_styles[family, dep] = rule(family, dep)
+            style = hidden_styles[family, dep]
+            if style is None:  # the rule draws no such hidden stroke
+                continue
+        else:
+            key = (id(batch.style), node, family)
+            style = styles.get(key)
+            if style is None:
+                style = styles[key] = batch.style or nodes[node].style_for(family)
         out[v].append(
             Stroke(
                 xy=xy[k],
                 xyz=xyz[k],
                 uv=None if s.group[p] in s.no_uv else uv[k],
-                visible=not hid,
+                visible=not dep,
                 family=family,
                 surface=batch.surface,
-                style=hidden_style if hid else style,
+                style=style,
+                occlusion=dep,
             )
         )
     return out
@@ -205,7 +224,7 @@ def render(
     hidden_lines: bool = False,
     tolerance: float = tol.CHORD_TOLERANCE,
     page: Page | tuple[float, float] | None = None,
-    hidden_style: Style | None = None,
+    hidden_style: HiddenStyle | None = None,
     intersections: bool = True,
 ) -> Drawing:
     """Render ``scene`` as seen by ``projector`` (see :meth:`lgraph.Scene.render`)."""
@@ -225,7 +244,7 @@ def render_views(
     hidden_lines: bool = False,
     tolerance: float = tol.CHORD_TOLERANCE,
     page: Page | tuple[float, float] | None = None,
-    hidden_style: Style | None = None,
+    hidden_style: HiddenStyle | None = None,
     chord: float | None = None,
     intersections: bool = True,
 ) -> list[Drawing]:
@@ -278,7 +297,7 @@ def _checked_options(
     page: object,
     hidden_style: object,
     intersections: object = True,
-) -> tuple[bool, float, Page | None, Style, bool]:
+) -> tuple[bool, float, Page | None, Callable[[str, int], Style | None], bool]:
     """The render options, checked (errors name the bad one)."""
     tolerance = as_number(tolerance)
     if not (
@@ -294,14 +313,9 @@ def _checked_options(
     for name, flag in (("hidden_lines", hidden_lines), ("intersections", intersections)):
         if not isinstance(flag, (bool, np.bool_)):
             raise TypeError(f"Scene.render: {name} must be True or False, got {flag!r}")
-    if hidden_style is not None and not isinstance(hidden_style, Style):
-        raise TypeError(
-            "Scene.render: hidden_style must be a Style (e.g. lg.Style(color='grey', "
-            f"dash=(2, 1.5))) or None, got {hidden_style!r}"
-        )
+    rule = hidden_style_rule(hidden_style)
     page = _checked_page(page)
-    hidden_style = HIDDEN_STYLE if hidden_style is None else hidden_style
-    return bool(hidden_lines), tolerance, page, hidden_style, bool(intersections)
+    return bool(hidden_lines), tolerance, page, rule, bool(intersections)
 
 
 def _render(
@@ -310,7 +324,7 @@ def _render(
     hidden_lines: bool,
     tolerance: float,
     page: Page | None,
-    hidden_style: Style,
+    rule: Callable[[str, int], Style | None],
     intersections: bool,
     chord: float | None = None,
 ) -> list[Drawing]:
@@ -325,7 +339,13 @@ def _render(
     ]
     # the curves where two surfaces meet, drawn on one of them, lie on both
     partner: dict[int, int] = {}  # id of such a batch -> the other node
-    for ni, extra in (intersection_batches(nodes, first) if intersections else {}).items():
+    meeting = meeting_pairs(nodes, first)
+    drawn_meetings = [
+        (a, b)
+        for a, b in meeting
+        if intersections and nodes[a].intersections and nodes[b].intersections
+    ]
+    for ni, extra in intersection_batches(nodes, drawn_meetings).items():
         per_node[ni] = [[*in_view, *(b for b, _ in extra)] for in_view in per_node[ni]]
         partner.update((id(b), other) for b, other in extra)
     batches = [
@@ -338,8 +358,7 @@ def _render(
     check_points(tol.INITIAL_SAMPLES * sum(len(b[1]) for b in batches))
     if not batches:
         return [
-            _with_marks(scene, [], nodes, p, hidden_lines, hidden_style, page)
-            for p in views.projectors
+            _with_marks(scene, [], nodes, p, hidden_lines, rule, page) for p in views.projectors
         ]
     s = Samples(batches, views)
     behind = views.behind(s.xyz, s.view[s.cid])
@@ -378,10 +397,22 @@ def _render(
     if seed_net_crossings(s, vis):  # a short piece between two samples
         _classify(s, vis)
     locate_flips(s, vis)
-    strokes = _strokes(s, nodes, hidden_lines, hidden_style, [1e-12 * d for d in diag])
+    # hidden runs split where the number of sheets in front changes
+    if hidden_lines:
+        # a hiding surface asked one by one that draws no contour leaves a gap
+        # in the net: then every hidden sample is counted
+        # in the net, and so do surfaces that may meet without their intersection drawn
+        every = any(not nodes[j].contour for j in vis.twins)
+        every |= any(
+            nodes[a].hides and nodes[b].hides for a, b in set(meeting) - set(drawn_meetings)
+        )
+        depth = occlusion_depth(s, vis, every)
+    else:
+        depth = s.hidden.astype(np.int64)
+    strokes = _strokes(s, nodes, hidden_lines, rule, [1e-12 * d for d in diag], depth)
     _warn_unused_styles(s, nodes)
     return [
-        _with_marks(scene, strokes[k], nodes, p, hidden_lines, hidden_style, page, vis, k)
+        _with_marks(scene, strokes[k], nodes, p, hidden_lines, rule, page, vis, k)
         for k, p in enumerate(views.projectors)
     ]
 
@@ -406,7 +437,7 @@ def _with_marks(
     nodes: tuple[Node, ...],
     projector: Projector,
     hidden_lines: bool,
-    hidden_style: Style,
+    rule: Callable[[str, int], Style | None],
     page: Page | tuple[float, float] | None,
     vis: Occlusion | None = None,
     view: int = 0,
@@ -420,7 +451,7 @@ def _with_marks(
 
         if vis is None:
             vis, view = Occlusion(nodes, projector), 0
-        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, hidden_style, view)
+        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, rule, view)
         strokes = strokes + dots
     return Drawing(strokes=strokes, page=page, labels=placed)
 

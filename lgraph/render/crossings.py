@@ -28,54 +28,33 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .boxes import box_pairs
 from .sampling import Samples, merge
 
 if TYPE_CHECKING:
     from .occlusion import Occlusion
 
-__all__ = ["NET_FAMILIES", "seed_net_crossings"]
+__all__ = ["NET_FAMILIES", "net_crossings", "seed_net_crossings"]
 
-#: the families whose curves form the net of a hiding node
+#: the families whose curves form the net of a hiding node asked one by one
 NET_FAMILIES = frozenset({"contour", "boundary"})
-
-#: grid cells per net chord (about): a few chords a cell
-_CELLS_PER_CHORD = 0.5
-#: at most this many (chord, cell) entries a view, so memory stays bounded
-_MAX_ENTRIES = 4_000_000
+#: where a curve enters another surface's solid: part of the net of every node
+MEETING_FAMILY = "intersection"
 
 
 def _net_curves(s: Samples, hiding: set[int]) -> np.ndarray:
-    """Mask of the curves that belong to the sampled net (contours and
-    boundaries of the nodes ``hiding``)."""
+    """Mask of the curves that belong to the sampled net: contours and
+    boundaries of the nodes ``hiding``, and the intersection curves of all."""
     net = np.zeros(len(s.t0), dtype=bool)
     for batch, node, _, first in s.parts:
-        if node not in hiding:
-            continue
+        families = (NET_FAMILIES | {MEETING_FAMILY}) if node in hiding else {MEETING_FAMILY}
         names = batch.curve_family
         if names is None:
-            if batch.family in NET_FAMILIES:
+            if batch.family in families:
                 net[first : first + len(batch)] = True
         else:
-            net[first : first + len(batch)] = [n in NET_FAMILIES for n in names]
+            net[first : first + len(batch)] = [n in families for n in names]
     return net
-
-
-def _cells(lo: np.ndarray, hi: np.ndarray, origin: np.ndarray, size: np.ndarray, g: int):
-    """Cell ranges ``(cx0, cy0, cx1, cy1)`` of boxes ``lo..hi`` in a ``g x g`` grid."""
-    c0 = np.clip(((lo - origin) / size).astype(np.int64), 0, g - 1)
-    c1 = np.clip(((hi - origin) / size).astype(np.int64), 0, g - 1)
-    return c0[:, 0], c0[:, 1], c1[:, 0], c1[:, 1]
-
-
-def _entries(cx0, cy0, cx1, cy1, g: int) -> tuple[np.ndarray, np.ndarray]:
-    """(item, cell) pairs of every cell each box covers."""
-    nx, ny = cx1 - cx0 + 1, cy1 - cy0 + 1
-    count = nx * ny
-    item = np.repeat(np.arange(len(cx0)), count)
-    k = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
-    nxr = nx[item]
-    cell = (cy0[item] + k // nxr) * g + cx0[item] + k % nxr
-    return item, cell
 
 
 def chord_crossings(
@@ -99,64 +78,6 @@ def chord_crossings(
     return hit, np.where(hit, fa, np.nan)
 
 
-def box_pairs(
-    alo: np.ndarray, ahi: np.ndarray, blo: np.ndarray, bhi: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Index pairs ``(i, j)`` of 2-D boxes ``alo[i]..ahi[i]`` and
-    ``blo[j]..bhi[j]`` that overlap, each pair once: a uniform grid sized on
-    the ``b`` boxes, every pair tested in the first cell of the overlap of
-    their cell ranges (no sorting of pairs, no duplicates).
-
-    >>> lo = np.array([[0.0, 0.0], [5.0, 5.0]]); hi = lo + 1
-    >>> [a.tolist() for a in box_pairs(lo, hi, np.array([[0.5, 0.5]]), np.array([[6.0, 6.0]]))]
-    [[0, 1], [0, 0]]
-    """
-    none = np.empty(0, np.int64)
-    if not len(alo) or not len(blo):
-        return none, none
-    # column by column: numpy gathers rows of an (n, 2) array slowly
-    ax0, ay0, ax1, ay1 = alo[:, 0], alo[:, 1], ahi[:, 0], ahi[:, 1]
-    bx0, by0, bx1, by1 = blo[:, 0], blo[:, 1], bhi[:, 0], bhi[:, 1]
-    lo = np.array([bx0.min(), by0.min()])
-    hi = np.array([bx1.max(), by1.max()])
-    # only a boxes that meet the b boxes' box can overlap one
-    near = np.flatnonzero((ax1 >= lo[0]) & (ax0 <= hi[0]) & (ay1 >= lo[1]) & (ay0 <= hi[1]))
-    if not len(near):
-        return none, none
-    ax0, ay0, ax1, ay1 = ax0[near], ay0[near], ax1[near], ay1[near]
-    g = int(max(1, min(np.sqrt(_CELLS_PER_CHORD * len(blo)), 2048)))
-
-    def cells(g: int) -> tuple:
-        size = np.maximum((hi - lo) / g, 1e-300)
-        cb = _cells(blo, bhi, lo, size, g)
-        ca = _cells(np.column_stack([ax0, ay0]), np.column_stack([ax1, ay1]), lo, size, g)
-        return cb, ca
-
-    cells_b, cells_a = cells(g)
-    count = lambda c: int(((c[2] - c[0] + 1) * (c[3] - c[1] + 1)).sum())  # noqa: E731
-    while g > 1 and count(cells_b) + count(cells_a) > _MAX_ENTRIES:
-        g = max(1, g // 2)
-        cells_b, cells_a = cells(g)
-    b_item, b_cell = _entries(*cells_b, g)
-    a_item, a_cell = _entries(*cells_a, g)
-    order = np.argsort(b_cell, kind="stable")
-    b_item, b_cell = b_item[order], b_cell[order]
-    start = np.searchsorted(b_cell, a_cell, "left")
-    m = np.searchsorted(b_cell, a_cell, "right") - start
-    pa = np.repeat(a_item, m)
-    pb = b_item[np.repeat(start - np.cumsum(m) + m, m) + np.arange(int(m.sum()))]
-    if len(a_item) > len(ax0) or len(b_item) > len(bx0):
-        # a pair seen in several cells is kept in the first cell of their overlap
-        pc = np.repeat(a_cell, m)
-        first_x = np.maximum(cells_a[0][pa], cells_b[0][pb])
-        first_y = np.maximum(cells_a[1][pa], cells_b[1][pb])
-        once = pc == first_y * g + first_x
-        pa, pb = pa[once], pb[once]
-    overlap = (ax1[pa] >= bx0[pb]) & (ax0[pa] <= bx1[pb])
-    overlap &= (ay1[pa] >= by0[pb]) & (ay0[pa] <= by1[pb])
-    return near[pa[overlap]], pb[overlap]
-
-
 def _view_crossings(
     xy: np.ndarray, qi: np.ndarray, ni: np.ndarray, cid: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -176,12 +97,14 @@ def _view_crossings(
     return a[hit], frac[hit]
 
 
-def _conic_roots(xy: np.ndarray, qi: np.ndarray, C: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _conic_roots(
+    xy: np.ndarray, qi: np.ndarray, C: np.ndarray, origin: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Where chords ``qi`` cross the outline conic ``C`` (one ``(3, 3)``, or
     one a chord): the chord of each crossing and its fraction along it, the
     roots in (0, 1) of the quadratic ``f(s) = y(s) C y(s)`` along the chord."""
-    x0, y0 = xy[qi, 0], xy[qi, 1]
-    rx, ry = xy[qi + 1, 0] - x0, xy[qi + 1, 1] - y0
+    x0, y0 = xy[qi, 0] - origin[0], xy[qi, 1] - origin[1]  # the conics' coordinates
+    rx, ry = xy[qi + 1, 0] - xy[qi, 0], xy[qi + 1, 1] - xy[qi, 1]
     if C.ndim == 2:
         C = C[None]
     c00, c01, c02 = C[:, 0, 0], C[:, 0, 1], C[:, 0, 2]
@@ -211,7 +134,7 @@ def _outline_crossings(
     ellipsoids whose tight outline boxes overlap, from the contiguous range
     of their node's chords, one conic at a time.  Every other chord is
     joined with all outline boxes through :func:`box_pairs`."""
-    C, box = vis.outlines(k), vis.outline_boxes(k)
+    C, box, origin = vis.outlines(k), vis.outline_boxes(k), vis.image_origin(k)
     qn = np.full(int(vis.q_node.max()) + 1, -1)
     qn[vis.q_node] = np.arange(vis.nq)
     cid = s.cid[chord]
@@ -236,7 +159,7 @@ def _outline_crossings(
             np.where(ok[:, None], box[:, :2], np.inf),
             np.where(ok[:, None], box[:, 2:], -np.inf),
         )
-        q, f = _conic_roots(s.xy, chord[free[pc]], C[pq])
+        q, f = _conic_roots(s.xy, chord[free[pc]], C[pq], origin)
         found_q.append(q)
         found_f.append(f)
     # chords on ellipsoid j, against every ellipsoid q whose outline box meets j's
@@ -254,43 +177,55 @@ def _outline_crossings(
         bx0, by0, bx1, by1 = box[q]
         rows = rows[(x1[rows] >= bx0) & (x0[rows] <= bx1) & (y1[rows] >= by0) & (y0[rows] <= by1)]
         if len(rows):
-            qq, f = _conic_roots(s.xy, chord[rows], C[q])
+            qq, f = _conic_roots(s.xy, chord[rows], C[q], origin)
             found_q.append(qq)
             found_f.append(f)
     return found_q, found_f
 
 
-def seed_net_crossings(s: Samples, vis: Occlusion) -> int:
-    """Insert, into every chord that the net crosses twice or more, one
-    untested sample between each two consecutive crossings (so that the
-    interval between them is tested).  The net: the exact outline conics of
-    the grouped ellipsoids (:meth:`~lgraph.render.occlusion.Occlusion.outlines`)
-    and the sampled contours and boundaries of every other hiding surface.
-    A curve is not crossed with its own surface's outline (its own contour
-    crossings are seeded by :func:`~lgraph.render.flips.seed_crossings` or
-    followed by the own-surface tests).  Returns the number of samples
-    inserted."""
+def net_crossings(
+    s: Samples, vis: Occlusion, query: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Every crossing of a chord with the net: the chord (its first sample)
+    and the fraction along it, for the chords ``query`` (default: all).
+    The net: the exact outline conics of the grouped ellipsoids
+    (``Occlusion.outlines``) and the sampled contours and boundaries of
+    every other hiding surface.  A curve is not crossed with its own
+    surface's outline (its own contour crossings are seeded by
+    :func:`~lgraph.render.flips.seed_crossings` or followed by the
+    own-surface tests)."""
+    none = np.empty(0, np.int64), np.empty(0)
     net = _net_curves(s, set(vis.twins))  # the surfaces asked one by one
     if not net.any() and not vis.nq:
-        return 0
+        return none
     chord = np.flatnonzero(s.cid[1:] == s.cid[:-1])
     chord = chord[(s.t[chord + 1] - s.t[chord]) > 0]
-    view = s.view[s.cid[chord]]
-    is_net = net[s.cid[chord]]
+    query = chord if query is None else query
+    qview = s.view[s.cid[query]]
+    net_chord = chord[net[s.cid[chord]]]
+    net_view = s.view[s.cid[net_chord]]
     found_q, found_f = [], []
-    for k in np.unique(view).tolist():
-        in_view = view == k
-        if net.any():
-            q, f = _view_crossings(s.xy, chord[in_view], chord[in_view & is_net], s.cid)
+    for k in np.unique(qview).tolist():
+        q_k = query[qview == k]
+        if len(net_chord):
+            q, f = _view_crossings(s.xy, q_k, net_chord[net_view == k], s.cid)
             found_q.append(q)
             found_f.append(f)
         if vis.nq:
-            q, f = _outline_crossings(s, vis, k, chord[in_view])
+            q, f = _outline_crossings(s, vis, k, q_k)
             found_q += q
             found_f += f
     if not found_q:
-        return 0
-    q, f = np.concatenate(found_q), np.concatenate(found_f)
+        return none
+    return np.concatenate(found_q), np.concatenate(found_f)
+
+
+def seed_net_crossings(s: Samples, vis: Occlusion) -> int:
+    """Insert, into every chord that the net crosses twice or more
+    (:func:`net_crossings`), one untested sample between each two
+    consecutive crossings (so that the interval between them is tested).
+    Returns the number of samples inserted."""
+    q, f = net_crossings(s, vis)
     if not len(q):
         return 0
     order = np.lexsort((f, q))

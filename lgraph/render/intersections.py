@@ -44,7 +44,7 @@ if TYPE_CHECKING:
     from ..projectors import Projector
     from ..scene import Node
 
-__all__ = ["Meeting", "Placed", "intersection_batches"]
+__all__ = ["Meeting", "Placed", "intersection_batches", "meeting_pairs"]
 
 
 @attrs.frozen
@@ -131,25 +131,35 @@ def _world_box(node: Node) -> tuple[np.ndarray, np.ndarray]:
     return c.min(axis=0), c.max(axis=0)
 
 
-def intersection_batches(
-    nodes: tuple[Node, ...], first: np.ndarray
-) -> dict[int, list[tuple[CurveBatch, int]]]:
-    """The intersection curves of the scene: per node index, the batches it
-    draws and, with each, the other node they lie on; ``first`` from
-    :func:`~lgraph.render.occlusion.twin_groups`."""
-    cand = [
-        k
-        for k, n in enumerate(nodes)
-        if n.surface is not None and n.intersections and first[k] == k
-    ]
+def meeting_pairs(nodes: tuple[Node, ...], first: np.ndarray) -> list[tuple[int, int]]:
+    """Pairs ``(i, j)``, ``i < j``, of surface nodes whose world boxes
+    overlap (the surfaces may meet), twins left out; ``first`` from
+    :func:`~lgraph.render.twins.twin_groups`."""
+    cand = [k for k, n in enumerate(nodes) if n.surface is not None and first[k] == k]
     if len(cand) < 2:
-        return {}
+        return []
     boxes = np.array([np.concatenate(_world_box(nodes[k])) for k in cand])
     lo, hi = boxes[:, :3], boxes[:, 3:]
-    meet = np.all((lo[:, None] <= hi[None]) & (hi[:, None] >= lo[None]), axis=2)
+    # sorted by the lower x: each box meets only the boxes starting before its end
+    order = np.argsort(lo[:, 0], kind="stable")
+    lo, hi = lo[order], hi[order]
+    stop = np.searchsorted(lo[:, 0], hi[:, 0], "right")
+    pairs = []
+    for i in range(len(cand)):
+        j = np.arange(i + 1, stop[i])
+        j = j[np.all((lo[j] <= hi[i]) & (hi[j] >= lo[i]), axis=1)]
+        pairs.extend((cand[order[i]], cand[order[k]]) for k in j.tolist())
+    return [(min(p), max(p)) for p in pairs]
+
+
+def intersection_batches(
+    nodes: tuple[Node, ...], pairs: list[tuple[int, int]]
+) -> dict[int, list[tuple[CurveBatch, int]]]:
+    """The intersection curves of the node ``pairs`` that may meet
+    (:func:`meeting_pairs`): per node index, the batches it draws and, with
+    each, the other node they lie on."""
     out: dict[int, list[tuple[CurveBatch, int]]] = {}
-    for i, j in zip(*np.nonzero(np.triu(meet, 1))):
-        a, b = cand[i], cand[j]
+    for a, b in pairs:
         if getattr(nodes[b].surface, "implicit", None) is None and (
             getattr(nodes[a].surface, "implicit", None) is not None
         ):

@@ -12,6 +12,7 @@ caps, a dot of diameter ``size`` in every backend.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -45,19 +46,29 @@ def _placed(
     occlusion: Any,
     hidden_lines: bool,
     view: int,
-) -> list[tuple[Any, np.ndarray, np.ndarray, bool]]:
-    """``(mark, xyz, xy, hidden)`` of the marks that are drawn, in order."""
+    rule: Callable[[str, int], Style | None],
+) -> list[tuple[Any, np.ndarray, np.ndarray, int, Style | None]]:
+    """``(mark, xyz, xy, depth, hidden style)`` of the marks that are drawn, in
+    order: ``depth`` the sheets in front (0: visible), the style from ``rule``
+    for hidden marks (a hidden mark whose rule gives None is not drawn)."""
     if not marks:
         return []
     xyz = np.array([m.at for m in marks], dtype=float)
     xy = _project(kind, xyz, projector)
     n = len(xyz)
-    hid = occlusion.hidden(xyz, xy, np.full(n, -1), np.full(n, OFF, dtype=np.int8), view=view)
+    owner, own = np.full(n, -1), np.full(n, OFF, dtype=np.int8)
+    hid = occlusion.hidden(xyz, xy, owner, own, view=view)
+    hid &= ~np.array([bool(m.always) for m in marks])
+    depth = np.zeros(n, dtype=np.int64)
+    if hidden_lines and hid.any():
+        i = np.flatnonzero(hid)
+        depth[i] = np.maximum(occlusion.sheets(xyz[i], xy[i], owner[i], own[i], view=view), 1)
     out = []
-    for m, p, q, h in zip(marks, xyz, xy, hid.tolist()):
-        h = h and not m.always
-        if hidden_lines or not h:
-            out.append((m, p, q, h))
+    for m, p, q, h, k in zip(marks, xyz, xy, hid.tolist(), depth.tolist()):
+        if not h:
+            out.append((m, p, q, 0, None))
+        elif hidden_lines and (style := rule(kind, k)) is not None:
+            out.append((m, p, q, k, style))
     return out
 
 
@@ -78,32 +89,36 @@ def place_marks(
     projector: Projector,
     occlusion: Any,
     hidden_lines: bool,
-    hidden_style: Style,
+    rule: Callable[[str, int], Style | None],
     view: int = 0,
 ) -> tuple[list[PlacedLabel], list[Stroke]]:
     """Placed labels and point strokes of a scene's (world-coordinate) marks,
-    seen by ``projector``, view ``view`` of ``occlusion``."""
+    seen by ``projector``, view ``view`` of ``occlusion``; hidden ones styled
+    by ``rule(family, occlusion)`` (families ``"label"`` and ``"point"``)."""
     placed: list[PlacedLabel] = []
-    for lab, p, q, h in _placed("label", labels, projector, occlusion, hidden_lines, view):
+    for lab, p, q, k, hs in _placed(
+        "label", labels, projector, occlusion, hidden_lines, view, rule
+    ):
         anchor = lab.anchor
         if anchor == "auto":
             step = 1e-6 * max(1.0, float(np.linalg.norm(p)))
             d = projector.project(p + step * lab.direction / np.linalg.norm(lab.direction))
             anchor = auto_anchor(*(np.asarray(d) - q).tolist())
         color = lab.color if lab.color is not None else (0.0, 0.0, 0.0)
-        style = Style(color=hidden_style.color if h else color)
-        placed.append(PlacedLabel(lab.text, q, p, not h, anchor, lab.offset, lab.size, style))
+        style = Style(color=hs.color if k else color)
+        placed.append(PlacedLabel(lab.text, q, p, not k, anchor, lab.offset, lab.size, style))
     strokes: list[Stroke] = []
-    for pt, p, q, h in _placed("point", points, projector, occlusion, hidden_lines, view):
-        base = hidden_style if h else (pt.style or Style())
+    for pt, p, q, k, hs in _placed("point", points, projector, occlusion, hidden_lines, view, rule):
+        base = hs if k else (pt.style or Style())
         style = Style(color=base.color, width=pt.size)
         strokes.append(
             Stroke(
                 xy=np.array([q, q]),
                 xyz=np.array([p, p]),
-                visible=not h,
+                visible=not k,
                 family="point",
                 style=style,
+                occlusion=k,
             )  # fmt: skip
         )
     return placed, strokes

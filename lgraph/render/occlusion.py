@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,66 +16,14 @@ from ..surfaces._quadric_ray import (
     quadric_ray_hits,
 )
 from ..surfaces.quadrics import Quadric
+from .boxes import BoxGrid
+from .twins import lies_on, twin_groups
 from .views import Views, as_views
 
 if TYPE_CHECKING:
     from ..scene import Node
-    from ..surfaces._base import Surface
 
 __all__ = ["NotBatchable", "Occlusion"]
-
-
-def _lies_on(surface: Surface, points: np.ndarray) -> np.ndarray:
-    """Which local ``points`` lie on ``surface``'s implicit equation (within
-    ``COINCIDENT_RTOL`` of its size, distance estimated as ``|F| / |grad F|``);
-    all False for a surface without ``implicit``."""
-    f = getattr(surface, "implicit", None)
-    if f is None or not len(points):
-        return np.zeros(len(points), dtype=bool)
-    size = surface.size
-    h = 1e-6 * size
-    with np.errstate(all="ignore"):
-        F = np.asarray(f(points), dtype=float)
-        grad = np.stack(
-            [(f(points + h * e) - f(points - h * e)) / (2 * h) for e in np.eye(3)], axis=-1
-        )
-        dist = np.abs(F) / np.linalg.norm(grad, axis=-1)
-    return dist <= tol.COINCIDENT_RTOL * size
-
-
-def twin_groups(nodes: tuple[Node, ...]) -> np.ndarray:
-    """For every node, the index of the first node holding the same surface
-    (the same object or an equal one) under the same transform; -1 for nodes
-    without a surface.  Hashable surfaces are grouped through a dict (linear
-    in the number of nodes); others are compared with each other."""
-    first = np.full(len(nodes), -1, dtype=np.int64)
-    seen: dict[Any, int] = {}
-    unhashable: list[int] = []
-    for k, node in enumerate(nodes):
-        s = node.surface
-        if s is None:
-            continue
-        key = (type(s), s, node.transform)
-        try:
-            first[k] = seen.setdefault(key, k)
-            continue
-        except TypeError:  # a surface with array fields
-            pass
-        for j in unhashable:
-            other = nodes[j]
-            try:
-                same = type(other.surface) is type(s) and (
-                    other.surface is s or bool(other.surface == s)
-                )
-            except Exception:  # noqa: BLE001 - an __eq__ comparing arrays, ...: not twins
-                same = False
-            if same and other.transform == node.transform:
-                first[k] = j
-                break
-        else:
-            first[k] = k
-            unhashable.append(k)
-    return first
 
 
 class NotBatchable(Exception):
@@ -111,56 +59,6 @@ def _inside(xy: np.ndarray, boxes: np.ndarray, view: np.ndarray) -> np.ndarray:
     inside = (x >= boxes[:, 0][view]) & (x <= boxes[:, 2][view])
     inside &= (y >= boxes[:, 1][view]) & (y <= boxes[:, 3][view])
     return inside
-
-
-class _BoxGrid:
-    """A uniform grid over the projected boxes ``(x0, y0, x1, y1)`` of the
-    grouped quadrics in one view: the (point, quadric) pairs to test."""
-
-    def __init__(self, box: np.ndarray) -> None:
-        pad = 1e-9 * (np.ptp(box[:, [0, 2]]) + np.ptp(box[:, [1, 3]]) + 1.0)
-        self.box = box + np.array([-pad, -pad, pad, pad])
-        n = len(box)
-        if n == 1:
-            return  # no grid: the box test alone
-        g = max(1, int(2 * np.sqrt(n)))
-        x0, y0 = self.box[:, 0].min(), self.box[:, 1].min()
-        x1, y1 = self.box[:, 2].max(), self.box[:, 3].max()
-        self.grid = (g, x0, y0, max(x1 - x0, 1e-300) / g, max(y1 - y0, 1e-300) / g)
-        cells: list[list[int]] = [[] for _ in range(g * g)]
-        for i, (bx0, by0, bx1, by1) in enumerate(self.box):
-            cx = self._cell(np.array([bx0, bx1]), 1)
-            cy = self._cell(np.array([by0, by1]), 2)
-            for yy in range(cy[0], cy[1] + 1):
-                for xx in range(cx[0], cx[1] + 1):
-                    cells[yy * g + xx].append(i)
-        counts = np.array([len(c) for c in cells])
-        self.cell_start = np.concatenate([[0], np.cumsum(counts)[:-1]])
-        self.cell_count = counts
-        self.cell_items = np.array([i for c in cells for i in c], dtype=np.int64)
-
-    def _cell(self, values: np.ndarray, axis: int) -> np.ndarray:
-        g, origin, size = self.grid[0], self.grid[axis], self.grid[axis + 2]
-        return np.clip(((values - origin) / size).astype(np.int64), 0, g - 1)
-
-    def pairs(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(point, quadric) index pairs whose box contains the point."""
-        if len(self.box) == 1:
-            x0, y0, x1, y1 = self.box[0]
-            x, y = xy[:, 0], xy[:, 1]
-            pt = np.flatnonzero((x >= x0) & (x <= x1) & (y >= y0) & (y <= y1))
-            return pt, np.zeros(len(pt), dtype=np.int64)
-        g = self.grid[0]
-        cell = self._cell(xy[:, 1], 2) * g + self._cell(xy[:, 0], 1)
-        counts = self.cell_count[cell]
-        pt = np.repeat(np.arange(len(xy)), counts)
-        first = np.repeat(self.cell_start[cell] + counts - np.cumsum(counts), counts)
-        q = self.cell_items[first + np.arange(len(pt))]
-        box = self.box[q]
-        p = xy[pt]
-        inside = (p[:, 0] >= box[:, 0]) & (p[:, 0] <= box[:, 2])
-        inside &= (p[:, 1] >= box[:, 1]) & (p[:, 1] <= box[:, 3])
-        return pt[inside], q[inside]
 
 
 class Occlusion:
@@ -237,6 +135,10 @@ class Occlusion:
         first = self.first = twin_groups(nodes)
         self.twins = {j: np.flatnonzero(first == first[j]) for j, _, _, _ in self.items}
         self._setup_grid(quads)
+        #: per node (index + 1; 0 for no node): its grouped quadric, or -1
+        self._q_of_node = np.full(len(nodes) + 1, -1)
+        if self.nq:
+            self._q_of_node[self.q_node + 1] = np.arange(self.nq)
         #: per asked surface, its padded box ``(x0, y0, x1, y1)`` in every view
         #: (unbounded where it has none)
         self._item_boxes = {j: _padded(boxes) for j, _, _, boxes in self.items}
@@ -247,7 +149,7 @@ class Occlusion:
 
     def _setup_grid(self, quads: list) -> None:
         self.nq = len(quads)
-        self._outline_cache: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self._outline_cache: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
         if not quads:
             return
         self.q_node = np.array([q[0] for q in quads])
@@ -266,7 +168,7 @@ class Occlusion:
             ok = np.isfinite(tight).all(axis=1)
             box[ok, :2] = np.maximum(box[ok, :2], tight[ok, :2])
             box[ok, 2:] = np.minimum(box[ok, 2:], tight[ok, 2:])
-            self.grids.append(_BoxGrid(box))
+            self.grids.append(BoxGrid(box))
         #: one quadric: its (padded) box in every view, ``(views, 4)``
         self._quadric_boxes = np.array([g.box[0] for g in self.grids])
 
@@ -275,7 +177,9 @@ class Occlusion:
         one conic ``(nq, 3, 3)`` each, ``[x, y, 1] C [x, y, 1]^T`` positive
         exactly inside the outline (the image of the ellipsoid), zero on it
         (the image of its contour); NaN for quadrics that are not
-        ellipsoids (:func:`~lgraph.surfaces._quadric_ray.quadric_outlines`)."""
+        ellipsoids (:func:`~lgraph.surfaces._quadric_ray.quadric_outlines`).
+        Image coordinates relative to :meth:`image_origin` (a scene far
+        from the origin keeps its digits)."""
         if k not in self._outline_cache:
             p = self.views.projectors[k]
             e1, e2, e3 = p.frame
@@ -288,7 +192,10 @@ class Occlusion:
                 M[:2, :3] = e1, e2
                 M[:2, 3] = np.array([e1, e2]) @ self.centre
                 M[2, 3] = 1.0
-            self._outline_cache[k] = quadric_outlines(self.q_A, self.q_b, self.q_d, M, self.q_pd)
+            origin = p.project(self.centre[None])[0]
+            shift = np.array([[1.0, 0.0, -origin[0]], [0.0, 1.0, -origin[1]], [0.0, 0.0, 1.0]])
+            conic, box = quadric_outlines(self.q_A, self.q_b, self.q_d, shift @ M, self.q_pd)
+            self._outline_cache[k] = (conic, box + np.tile(origin, 2), origin)
         return self._outline_cache[k][0]
 
     def outline_boxes(self, k: int) -> np.ndarray:
@@ -296,6 +203,12 @@ class Occlusion:
         ellipsoids' outlines in view ``k`` (NaN for other quadrics)."""
         self.outlines(k)
         return self._outline_cache[k][1]
+
+    def image_origin(self, k: int) -> np.ndarray:
+        """The image of the scene's centre in view ``k``: the origin of the
+        coordinates of :meth:`outlines`."""
+        self.outlines(k)
+        return self._outline_cache[k][2]
 
     def _quadric_pairs(
         self, xy: np.ndarray, view: np.ndarray | None = None
@@ -328,10 +241,36 @@ class Occlusion:
         """Hidden flags of points ``xyz`` (projected to ``xy``, each in its
         ``view``); ``cause`` (optional output) receives, for points hidden
         by a grouped quadric, that quadric's index (else -1)."""
+        return self._test(xyz, xy, owner, kind, cause, view, False)
+
+    def sheets(
+        self,
+        xyz: np.ndarray,
+        xy: np.ndarray,
+        owner: np.ndarray,
+        kind: np.ndarray,
+        view: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """How many surface sheets lie between each point and the eye: the
+        crossings of its ray with every hiding surface (the grouped
+        ellipsoids' roots in closed form, the others' ``hit_count``)."""
+        return self._test(xyz, xy, owner, kind, None, view, True)
+
+    def _test(
+        self,
+        xyz: np.ndarray,
+        xy: np.ndarray,
+        owner: np.ndarray,
+        kind: np.ndarray,
+        cause: np.ndarray | None,
+        view: np.ndarray | None,
+        count: bool,
+    ) -> np.ndarray:
+        """:meth:`hidden` (flags) or :meth:`sheets` (counts, with ``count``)."""
         if isinstance(view, (int, np.integer)):
             view = None if self.views.k == 1 else np.full(len(xyz), view)
         dirs, smax = self.views.rays(xyz, view)
-        out = np.zeros(len(xyz), dtype=bool)
+        out = np.zeros(len(xyz), dtype=np.int64 if count else bool)
         if cause is not None:
             cause[:] = -1
         if self.nq:
@@ -343,10 +282,13 @@ class Occlusion:
                 ow, kd = owner[pt], kind[pt]
             coef = self._coefficients(q)
             own = np.where(self._owned(o, q, ow, kd, coef), kd, OFF).astype(np.int8)
-            h = quadric_ray_hits(o, v, sm, own, *coef)
-            out[pt[h]] = True
-            if cause is not None:
-                cause[pt[h]] = q[h]
+            h = quadric_ray_hits(o, v, sm, own, *coef, count=count)
+            if count:
+                np.add.at(out, pt, h)
+            else:
+                out[pt[h]] = True
+                if cause is not None:
+                    cause[pt[h]] = q[h]
         if not self.items:
             return out
         for j, surf, inv, idx in self._in_boxes(xy, view):
@@ -357,10 +299,13 @@ class Occlusion:
             o = inv.apply(xyz[idx])
             tie = np.flatnonzero(~mine & (kind[idx] != OFF))
             if len(tie):  # the tie rule: points lying on this surface count as its own
-                on = tie[_lies_on(surf, o[tie])]
+                on = tie[lies_on(surf, o[tie])]
                 own[on] = kind[idx[on]]
             v = inv.apply_vector(dirs[idx])
-            out[idx] |= surf.hits(o, v, smax[idx], own)
+            if count:
+                out[idx] += np.asarray(surf.hit_count(o, v, smax[idx], own), dtype=np.int64)
+            else:
+                out[idx] |= surf.hits(o, v, smax[idx], own)
         return out
 
     def _in_boxes(self, xy: np.ndarray, view: np.ndarray | None) -> Iterator[tuple]:
@@ -420,6 +365,49 @@ class Occlusion:
         out = np.full((max((len(m) for _, m in parts), default=0), len(xyz)), np.nan)
         for idx, m in parts:
             out[: len(m), idx] = m
+        return out
+
+    def own_sides(
+        self,
+        xyz: np.ndarray,
+        owner: np.ndarray,
+        view: np.ndarray | None = None,
+        uv: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """On which side of their own surfaces' contours points lie: the sign
+        of ``N . ray`` (``(n, 2)``: the owner's surface, and for an
+        intersection curve on a grouped ellipsoid its second one; 0 where
+        unknown).  For grouped ellipsoids ``N`` is ``grad F``; for the other
+        surfaces the normal at the points' parameters ``uv`` (their own
+        surface's).  Where it changes between two samples, the curve has
+        crossed its own contour, where its image only touches the image of
+        the contour (no 2-D crossing)."""
+        out = np.zeros((len(xyz), 2), dtype=np.int8)
+        if not len(xyz):
+            return out
+        dirs, _ = self.views.rays(xyz, view)
+        for col, nodes in enumerate((self._on_first, self._on_second)):
+            if not self.nq:
+                break
+            q = self._q_of_node[nodes[owner + 1] + 1]
+            rows = np.flatnonzero(q >= 0)
+            if not len(rows):
+                continue
+            x = xyz[rows] - self.centre
+            A, b, _, _ = self._coefficients(q[rows])
+            g = 2 * (np.einsum("nij,nj->ni", A, x) if A.ndim == 3 else x @ A) + b
+            out[rows, col] = np.sign(np.einsum("ni,ni->n", g, dirs[rows]))
+        if uv is None:
+            return out
+        first = self._on_first[owner + 1]
+        for j, surf, inv, _ in self.items:
+            rows = np.flatnonzero((first == j) & np.isfinite(uv[:, 0]))
+            if not len(rows):
+                continue
+            with np.errstate(all="ignore"):
+                n = surf.normal(uv[rows, 0], uv[rows, 1])
+                side = np.sign(np.einsum("ni,ni->n", n, inv.apply_vector(dirs[rows])))
+            out[rows, 0] = np.nan_to_num(side).astype(np.int8)
         return out
 
     def _on(self, owner: np.ndarray, nodes: np.ndarray) -> np.ndarray:

@@ -26,7 +26,9 @@ The format::
     [render]                     # optional: keyword arguments of Scene.render
     hidden_lines = true
     tolerance = 1e-4
-    hidden_style = { color = "#808080", width = 0.3, dash = [2, 1.5] }
+    hidden_style = { color = "#808080", width = 0.3, dash = [2, 1.5] }  # or per family:
+                                 # hidden_style = { contour = {...}, default = {...} }
+    max_occlusion = 1            # draw hidden parts behind one sheet only
 
     [save]                       # optional: options of the backend chosen by the output
     title = "Ellipsoid"          # suffix (.pdf: compress, precision, title; .png: dpi,
@@ -76,8 +78,10 @@ table           keys
                 ``margin``; or ``width`` and ``height`` (pt, both), ``margin``,
                 ``extent``.  Optional: the default crops the page to the figure.
 ``render``      ``hidden_lines`` (bool), ``tolerance`` (1e-9 to 0.1 of the figure's
-                diagonal), ``hidden_style`` (a style table), ``intersections``
-                (bool, default true: draw where surfaces cut each other).  Optional.
+                diagonal), ``hidden_style`` (a style table, or one per family name
+                with ``default`` for the rest), ``max_occlusion`` (hidden parts
+                behind more sheets are not drawn), ``intersections`` (bool,
+                default true: draw where surfaces cut each other).  Optional.
 ``save``        ``width``, ``height`` (a physical size such as ``"8.5cm"``, any format)
                 and the options of the output's backend (see
                 :func:`lgraph.backends.backend_options`).  Optional.

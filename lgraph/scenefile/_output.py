@@ -13,7 +13,17 @@ from typing import Any
 
 from ._errors import Key, _Collect, _fail, _Invalid
 from ._locate import _show
-from ._values import _boolean, _call, _number, _only, _required, _string, _style, _table, _vector
+from ._values import (
+    _boolean,
+    _call,
+    _number,
+    _only,
+    _required,
+    _string,
+    _styles,
+    _table,
+    _vector,
+)
 
 
 def _projector(key: Key, p: Any) -> Any:
@@ -62,7 +72,7 @@ def _projector(key: Key, p: Any) -> Any:
 
 
 def _render(key: Key, r: dict[str, Any]) -> dict[str, Any]:
-    _only(key, r, ("hidden_lines", "tolerance", "hidden_style", "intersections"))
+    _only(key, r, ("hidden_lines", "tolerance", "hidden_style", "intersections", "max_occlusion"))
     out: dict[str, Any] = {}
     for flag in ("hidden_lines", "intersections"):
         if flag in r:
@@ -78,8 +88,19 @@ def _render(key: Key, r: dict[str, Any]) -> dict[str, Any]:
                 f"to 0.1 (like 1e-4), got {tol!r}",
             )
         out["tolerance"] = tol
-    if "hidden_style" in r:
-        out["hidden_style"] = _style(key + ("hidden_style",), r["hidden_style"])
+    if "hidden_style" in r or "max_occlusion" in r:
+        from ..style import HiddenStyles, Style
+
+        # one style table, or one per family name ("default" for the rest)
+        styles = _styles(key + ("hidden_style",), r.get("hidden_style", {}))
+        limit = None
+        if "max_occlusion" in r:
+            limit = _int(key + ("max_occlusion",), r["max_occlusion"], 0, 1_000_000)
+        if isinstance(styles, Style):
+            out["hidden_style"] = HiddenStyles(default=styles, max_occlusion=limit)
+        else:
+            default = styles.pop("default", None)
+            out["hidden_style"] = HiddenStyles(styles, default, limit)
     return out
 
 

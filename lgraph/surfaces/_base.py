@@ -410,6 +410,30 @@ class Surface:
 
         return hits(self, origins, directions, smax, own)
 
+    def hit_count(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """How many times each ray ``origins + s * directions``, ``0 < s <
+        smax``, crosses the drawn patch (int array; arguments as :meth:`hits`).
+        The renderer asks it for the occlusion depth of hidden strokes
+        (``Stroke.occlusion``).
+
+        Default: for a surface that uses the numeric ray test, the distinct
+        roots of every patch box the ray meets (see
+        :mod:`!lgraph.surfaces._numeric_hits`); a class with a ray test of its
+        own counts 1 where :meth:`hits` is True (a lower bound: override this
+        method to count exactly, as quadrics, tori and planes do).
+        """
+        if type(self).hits is not Surface.hits:
+            return np.asarray(self.hits(origins, directions, smax, own), dtype=np.int64)
+        from ._numeric_hits import hits
+
+        return hits(self, origins, directions, smax, own, count=True)
+
     def visibility_margins(
         self,
         origins: np.ndarray,

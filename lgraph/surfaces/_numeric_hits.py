@@ -172,8 +172,10 @@ def hits(
     directions: np.ndarray,
     smax: np.ndarray,
     own: np.ndarray | None = None,
+    count: bool = False,
 ) -> np.ndarray:
-    """Numeric :meth:`Surface.hits` (see there).
+    """Numeric :meth:`Surface.hits` (see there); with ``count``, the number
+    of distinct roots of each ray instead (:meth:`Surface.hit_count`).
 
     Rays are tested in chunks of ``HIT_CHUNK_RAYS`` so that memory stays
     bounded; a chunk whose rays meet more than ``HIT_MAX_CANDIDATES`` patch
@@ -185,21 +187,30 @@ def hits(
     nray = len(o)
     smax = np.broadcast_to(np.asarray(smax, dtype=float), (nray,)).copy()
     own = np.zeros(nray, np.int8) if own is None else np.asarray(own).reshape(-1)
-    out = np.zeros(nray, bool)
+    out = np.zeros(nray, np.int64 if count else bool)
     if not nray:
         return out
     H = _hierarchy(surface)
     for a in range(0, nray, HIT_CHUNK_RAYS):
         b = slice(a, a + HIT_CHUNK_RAYS)
-        out[b] = _hits_chunk(surface, H, o[b], v[b], smax[b], own[b])
+        out[b] = _hits_chunk(surface, H, o[b], v[b], smax[b], own[b], count)
     return out
 
 
 def _hits_chunk(
-    surface: Surface, H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray, own: Any
+    surface: Surface,
+    H: _Hierarchy,
+    o: np.ndarray,
+    v: np.ndarray,
+    smax: np.ndarray,
+    own: Any,
+    count: bool = False,
 ) -> np.ndarray:
+    """Hits of one chunk of rays; with ``count``, every patch is searched
+    (not only until a ray's first root) and the distinct roots are counted."""
     nray = len(o)
     out = np.zeros(nray, bool)
+    roots_r, roots_s = [], []
     d = surface.domain
     size = H.size
     vnorm = np.linalg.norm(v, axis=1)
@@ -212,8 +223,9 @@ def _hits_chunk(
     c1 = c0 + np.array([H.h1, H.h2])
     own_uv = np.full((nray, 2), np.nan)
     for depth in range(HIT_MAX_DEPTH + 1):
-        keep = ~out[r]
-        r, c0, c1, s0, s1 = r[keep], c0[keep], c1[keep], s0[keep], s1[keep]
+        if not count:
+            keep = ~out[r]
+            r, c0, c1, s0, s1 = r[keep], c0[keep], c1[keep], s0[keep], s1[keep]
         if not len(r):
             break
         uv = 0.5 * (c0 + c1)
@@ -225,12 +237,15 @@ def _hits_chunk(
         selfroot = conv & (own[r] != OFF) & ((s < s_self[r]) | (x_off < s_self[r] * vnorm[r]))
         valid = conv & ~selfroot & (s > s_eps[r]) & (s < smax[r])
         out[r[valid]] = True
+        if count:
+            roots_r.append(r[valid])
+            roots_s.append(s[valid])
         m = selfroot & (own[r] == ON)
         own_uv[r[m]] = uv[m]
         if depth == HIT_MAX_DEPTH:
             break
         # subdivide patches where Newton failed or left the patch
-        redo = ~valid & ~out[r] & ~(conv & _in_cell(surface, uv, c0, c1, 1.5))
+        redo = ~valid & (count | ~out[r]) & ~(conv & _in_cell(surface, uv, c0, c1, 1.5))
         if not redo.any():
             break
         r, c0, c1 = r[redo], c0[redo], c1[redo]
@@ -248,6 +263,8 @@ def _hits_chunk(
         r, c0, c1, s0, s1 = nr[ok], n0[ok], n1[ok], t0[ok], t1[ok]
     # rays from points on the surface: the root next to the own root
     cand = np.nonzero((own == ON) & ~out & np.isfinite(own_uv[:, 0]))[0]
+    if count:  # the root next to the own one may be missing while others were found
+        cand = np.nonzero((own == ON) & np.isfinite(own_uv[:, 0]))[0]
     if len(cand):
         uv, s = _local_second_root(surface, o[cand], v[cand], own_uv[cand])
         ok = np.isfinite(s) & (s > 0) & np.isfinite(uv).all(axis=1)
@@ -256,5 +273,26 @@ def _hits_chunk(
             uv = surface.domain.wrap(uv)
             step = np.tile([[d.span(0) / 8, d.span(1) / 8]], (len(cand), 1))
             uv, s, conv = _newton(surface, o[cand], v[cand], uv, s, step, tol)
-            out[cand[conv & (s > s_eps[cand]) & (s < smax[cand])]] = True
-    return out
+            ok = conv & (s > s_eps[cand]) & (s < smax[cand])
+            out[cand[ok]] = True
+            if count:
+                roots_r.append(cand[ok])
+                roots_s.append(s[ok])
+    if not count:
+        return out
+    return _distinct(np.concatenate(roots_r), np.concatenate(roots_s), 1e-7 * size / vnorm, nray)
+
+
+def _distinct(r: np.ndarray, s: np.ndarray, gap: np.ndarray, nray: int) -> np.ndarray:
+    """Number of distinct roots ``s`` of every ray (roots of one ray closer
+    than ``gap[r]`` are one: the same root found from neighbouring patches).
+
+    >>> r, s = np.array([0, 0, 0, 2]), np.array([1.0, 1.0 + 1e-12, 2.0, 5.0])
+    >>> _distinct(r, s, np.full(3, 1e-9), 3).tolist()
+    [2, 0, 1]
+    """
+    order = np.lexsort((s, r))
+    r, s = r[order], s[order]
+    first = np.ones(len(r), dtype=bool)
+    first[1:] = (r[1:] != r[:-1]) | (s[1:] - s[:-1] > gap[r[1:]])
+    return np.bincount(r[first], minlength=nray)

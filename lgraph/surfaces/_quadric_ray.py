@@ -40,8 +40,10 @@ def quadric_ray_hits(
     d: np.ndarray | float,
     eps: np.ndarray | float,
     in_patch: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    count: bool = False,
 ) -> np.ndarray:
-    """Whether rays meet the quadric(s) at some ``s`` with ``eps < s < smax``.
+    """Whether rays meet the quadric(s) at some ``s`` with ``eps < s < smax``
+    (with ``count``: how many times, 0, 1 or 2).
 
     ``A`` is ``(3, 3)`` or ``(n, 3, 3)``, ``b`` ``(3,)`` or ``(n, 3)``, ``d``
     scalar or ``(n,)``.  ``own`` codes: ON (origin on this quadric: only the
@@ -53,7 +55,7 @@ def quadric_ray_hits(
     Av = np.einsum("...ij,...j->...i", A, v) if A.ndim == 3 else v @ A
     qa = _dot(v, Av)
     qb = 2 * _dot(o, Av) + _dot(v, b)
-    hit = np.zeros(o.shape[:-1], dtype=bool)
+    hits = np.zeros(o.shape[:-1], dtype=np.int8)
 
     def accept(s: np.ndarray, mask: np.ndarray, lower: np.ndarray | float) -> np.ndarray:
         ok = mask & np.isfinite(s) & (s > lower) & (s < smax)
@@ -65,7 +67,7 @@ def quadric_ray_hits(
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         on = own == ON
         if on.any():
-            hit |= accept(-qb / qa, on, 0.0)
+            hits += accept(-qb / qa, on, 0.0)
         # contour points: the view ray is tangent (double root at s = 0); it
         # meets the quadric elsewhere only if it lies on it (a ruling), and
         # then it does not hide its own contour either.
@@ -80,8 +82,9 @@ def quadric_ray_hits(
             lin = real & (np.abs(qa) <= 1e-14 * (np.abs(qb) + np.abs(qc)) + 1e-300)
             r1 = np.where(lin, -qc / qb, q / qa)
             r2 = np.where(lin, np.nan, qc / q)
-            hit |= accept(r1, real, eps) | accept(r2, real, eps)
-    return hit
+            hits += accept(r1, real, eps)
+            hits += accept(r2, real, eps)
+    return hits if count else hits > 0
 
 
 def quadric_coefficients_world(

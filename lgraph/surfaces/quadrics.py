@@ -78,6 +78,11 @@ class Quadric(Surface):
         smax: np.ndarray,
         own: np.ndarray | None = None,
     ) -> np.ndarray:
+        return self._ray_test(origins, directions, smax, own, False)
+
+    def _ray_test(
+        self, origins: Any, directions: Any, smax: Any, own: Any, count: bool
+    ) -> np.ndarray:
         o = np.asarray(origins, dtype=float)
         v = np.asarray(directions, dtype=float)
         own = np.zeros(o.shape[:-1], np.int8) if own is None else np.asarray(own)
@@ -85,8 +90,18 @@ class Quadric(Surface):
         vnorm = np.linalg.norm(v, axis=-1)
         eps = SELF_HIT_RTOL * self.size / np.where(vnorm > 0, vnorm, 1.0)
         return quadric_ray_hits(
-            o, v, smax, own, A, b, d, eps, None if self.closed else self._patch_test
+            o, v, smax, own, A, b, d, eps, None if self.closed else self._patch_test, count
         )
+
+    def hit_count(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """The ray's roots in the drawn patch, counted in closed form (0, 1 or 2)."""
+        return self._ray_test(origins, directions, smax, own, True).astype(np.int64)
 
     @property
     def closed(self) -> bool:

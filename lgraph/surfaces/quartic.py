@@ -122,6 +122,18 @@ class _QuarticSurface(Surface):
         k, lin = self._quartic
         return _quartic_hits(origins, directions, smax, own, k, lin, self._quartic_size())
 
+    def hit_count(
+        self,
+        origins: np.ndarray,
+        directions: np.ndarray,
+        smax: np.ndarray,
+        own: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """The ray's crossings (up to four), counted by the numeric ray test."""
+        from ._numeric_hits import hits
+
+        return hits(self, origins, directions, smax, own, count=True)
+
 
 @attrs.frozen
 class Torus(_QuarticSurface):

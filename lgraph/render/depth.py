@@ -1,0 +1,160 @@
+"""Occlusion depth: how many surface sheets lie between a hidden point and the eye.
+
+After the visibility flips are located, every hidden sample is asked how
+many times its ray to the eye crosses a surface of the scene
+(``Occlusion.sheets``: the grouped ellipsoids'
+roots counted in closed form, every other surface through its
+``hit_count``).  Where two neighbouring hidden samples of a curve differ,
+the change is located by bisection on the curve parameter (to
+``BISECTION_RTOL`` of its span, as the flips) and both of its sides are
+inserted, so that strokes split exactly where the depth changes
+(``Stroke.occlusion``).
+
+A depth change needs no sample of its own in between: the depth is
+constant between two visibility candidates that the crossings step
+(:mod:`lgraph.render.crossings`) has separated, except where a hidden curve
+passes behind a further contour; there the two samples around it differ
+and the bisection finds it.  A hidden sample always counts at least one
+sheet (the ray test and the count agree except at grazing rays, where the
+count may miss a tangential double root).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .. import _tolerance as tol
+from .crossings import net_crossings
+from .sampling import merge
+
+if TYPE_CHECKING:
+    from .occlusion import Occlusion
+    from .sampling import Samples
+
+__all__ = ["occlusion_depth"]
+
+#: passes of locating changes of depth (a bracket may hold more than one)
+_MAX_PASSES = 2
+#: changes of depth are located to this fraction of the curve's parameter
+#: span, as the flips of visibility
+DEPTH_RTOL = tol.BISECTION_RTOL
+
+
+def _count(s: Samples, vis: Occlusion, rows: np.ndarray) -> np.ndarray:
+    owner, kind = s.owners(rows)
+    n = vis.sheets(s.xyz[rows], s.xy[rows], owner, kind, view=s.view[s.cid[rows]])
+    return np.maximum(n, 1)
+
+
+def _candidates(s: Samples, vis: Occlusion, chord: np.ndarray, every: bool) -> np.ndarray:
+    """Which chords ``chord`` (between two hidden samples) may hold a change
+    of depth: those crossed by the net (:func:`~lgraph.render.crossings.net_crossings`)
+    and those across which a curve passes its own surface's contour (the
+    sign of ``N . ray`` changes); all of them with ``every`` (a net known
+    to be incomplete)."""
+    if every or not len(chord):
+        return np.ones(len(chord), dtype=bool)
+    q, _ = net_crossings(s, vis, chord)
+    out = np.isin(chord, q)
+    ends = np.concatenate([chord, chord + 1])
+    owner, _ = s.owners(ends)
+    side = vis.own_sides(s.xyz[ends], owner, s.view[s.cid[ends]], s.uv[ends])
+    a, b = side[: len(chord)], side[len(chord) :]
+    out |= np.any(a != b, axis=1)
+    return out
+
+
+def occlusion_depth(s: Samples, vis: Occlusion, every: bool = False) -> np.ndarray:
+    """The number of sheets in front of every sample (0 where visible);
+    inserts both sides of every change of depth along a hidden run.
+
+    The depth can change only where the curve crosses the net or its own
+    ellipsoid's contour (:func:`_candidates`): every run of hidden samples
+    between two such chords is counted at its two ends (and at every sample
+    where the ends disagree); ``every`` counts every hidden sample (a scene
+    whose net is incomplete: a hiding surface that draws no contour)."""
+    n = len(s.t)
+    depth = np.zeros(n, dtype=np.int64)
+    hid = np.flatnonzero(s.hidden)
+    if not len(hid):
+        return depth
+    # chords between two hidden samples of one curve
+    hh = s.hidden[:-1] & s.hidden[1:] & (s.cid[:-1] == s.cid[1:]) & (s.t[1:] > s.t[:-1])
+    chord = np.flatnonzero(hh)
+    cut = ~hh  # between samples i and i + 1: a new segment begins
+    cut[chord] = _candidates(s, vis, chord, every)
+    first = np.concatenate([[True], cut])[hid]  # a hidden sample starting its segment
+    last = np.concatenate([cut, [True]])[hid]
+    seg = np.cumsum(first) - 1  # segment of every hidden sample
+    ask = first | last
+    count = np.zeros(len(hid), dtype=np.int64)
+    count[ask] = _count(s, vis, hid[ask])
+    lo = count[first]
+    hi = count[last]
+    odd = np.flatnonzero(lo != hi)  # ends disagree: count every sample there
+    if len(odd):
+        rest = np.isin(seg, odd) & ~ask
+        count[rest] = _count(s, vis, hid[rest])
+    fill = ~ask & ~np.isin(seg, odd)
+    count[fill] = lo[seg[fill]]
+    depth[hid] = count
+    for _ in range(_MAX_PASSES):  # a bracket may hold two changes: look again
+        # neighbouring hidden samples of one curve with different depths, not
+        # yet located (a located change is a bracket narrower than the tolerance)
+        a = np.flatnonzero(
+            s.hidden[:-1] & s.hidden[1:] & (s.cid[:-1] == s.cid[1:]) & (depth[:-1] != depth[1:])
+        )
+        cid = s.cid[a]
+        span = np.abs(s.t1[cid] - s.t0[cid])
+        a = a[s.t[a + 1] - s.t[a] > DEPTH_RTOL * span]
+        if not len(a):
+            break
+        depth = _locate(s, vis, a, depth)
+    return depth
+
+
+def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.ndarray:
+    """Bisect every bracket ``a, a + 1`` to its change of depth, insert both
+    ends (their depths counted) and return the depths of the merged samples."""
+    cid = s.cid[a]
+    lo, hi = s.t[a].copy(), s.t[a + 1].copy()
+    dlo, dhi = depth[a], depth[a + 1].copy()
+    span = np.abs(s.t1[cid] - s.t0[cid])
+    owner, kind = s.owners(a)
+    view = s.view[cid]
+    # K-section: each step splits every bracket into K parts at once, K chosen
+    # like the flips' (a fixed cost per call against the cost per point)
+    # per view: views rendered together split each bracket as a view alone would
+    n_open = np.bincount(view, minlength=s.views.k)
+    ks = 2 ** np.arange(1, int(np.log2(tol.SECTIONS)) + 1)
+    per_bit = (vis.cost_per_call + n_open[:, None] * (ks - 1) * vis.cost_per_point) / np.log2(ks)
+    Kv = ks[np.argmin(per_bit, axis=1)][view]  # per bracket
+    for _ in range(tol.BISECTION_MAX_STEPS):
+        go = np.flatnonzero(hi - lo > DEPTH_RTOL * span)
+        if not len(go):
+            break
+        k = Kv[go]
+        m = k - 1  # sub-points of each bracket
+        rep = np.repeat(go, m)
+        start = np.cumsum(m) - m
+        jj = np.arange(len(rep)) - np.repeat(start, m) + 1  # 1 .. m in each bracket
+        tm = lo[rep] + (hi[rep] - lo[rep]) * (jj / np.repeat(k, m))
+        xyz, _, xy = s.evaluate(cid[rep], tm, True)
+        n = np.maximum(vis.sheets(xyz, xy, owner[rep], kind[rep], view=view[rep]), 1)
+        # the first sub-point whose depth differs from lo's (none: the last part)
+        first = np.minimum.reduceat(np.where(n != dlo[rep], jj - 1, np.repeat(m, m)), start)
+        has_lo, has_hi = first > 0, first < m
+        lo[go[has_lo]] = tm[(start + first - 1)[has_lo]]
+        hi[go[has_hi]] = tm[(start + first)[has_hi]]
+        dhi[go[has_hi]] = n[(start + first)[has_hi]]
+    t = np.column_stack([lo, hi]).ravel()
+    c = np.repeat(cid, 2)
+    xyz, uv, xy = s.evaluate(c, t, True)
+    ends = np.column_stack([dlo, dhi]).ravel()  # counted at these very points
+    new = merge(s, np.repeat(a, 2), c, t, xyz, uv, xy, np.ones(len(t), dtype=bool))
+    out = np.empty(len(s.t), dtype=np.int64)
+    out[~new] = depth
+    out[new] = ends
+    return out
