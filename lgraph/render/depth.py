@@ -35,8 +35,11 @@ if TYPE_CHECKING:
 
 __all__ = ["occlusion_depth"]
 
-#: passes of locating changes of depth (a bracket may hold more than one)
-_MAX_PASSES = 2
+#: passes of locating changes of depth: one locates the first change in each
+#: bracket; a second change within the same bracket (rare) then splits the
+#: strokes at a sample, not at the exact point (each pass costs as much as
+#: the first on numeric surfaces)
+_MAX_PASSES = 1
 #: changes of depth are located to this fraction of the curve's parameter
 #: span, as the flips of visibility
 DEPTH_RTOL = tol.BISECTION_RTOL
@@ -100,7 +103,7 @@ def occlusion_depth(s: Samples, vis: Occlusion, every: bool = False) -> np.ndarr
     fill = ~ask & ~np.isin(seg, odd)
     count[fill] = lo[seg[fill]]
     depth[hid] = count
-    for _ in range(_MAX_PASSES):  # a bracket may hold two changes: look again
+    for _ in range(_MAX_PASSES):
         # neighbouring hidden samples of one curve with different depths, not
         # yet located (a located change is a bracket narrower than the tolerance)
         a = np.flatnonzero(
@@ -112,6 +115,20 @@ def occlusion_depth(s: Samples, vis: Occlusion, every: bool = False) -> np.ndarr
         if not len(a):
             break
         depth = _locate(s, vis, a, depth)
+    # changes left (a second one in a bracket): split at the later sample, so
+    # that the two strokes still meet (a copy of it ends the first)
+    a = np.flatnonzero(
+        s.hidden[:-1] & s.hidden[1:] & (s.cid[:-1] == s.cid[1:]) & (depth[:-1] != depth[1:])
+    )
+    cid = s.cid[a]
+    a = a[s.t[a + 1] - s.t[a] > DEPTH_RTOL * np.abs(s.t1[cid] - s.t0[cid])]
+    if len(a):
+        b = a + 1
+        new = merge(s, a, s.cid[b], s.t[b], s.xyz[b], s.uv[b], s.xy[b], np.ones(len(a), bool))
+        out = np.empty(len(s.t), dtype=np.int64)
+        out[~new] = depth
+        out[new] = depth[a]
+        depth = out
     return depth
 
 
