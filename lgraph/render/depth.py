@@ -27,6 +27,7 @@ import numpy as np
 
 from .. import _tolerance as tol
 from .crossings import net_crossings
+from .flips import sections, sub_points
 from .sampling import merge
 
 if TYPE_CHECKING:
@@ -141,31 +142,20 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
     span = np.abs(s.t1[cid] - s.t0[cid])
     owner, kind = s.owners(a)
     view = s.view[cid]
-    # K-section: each step splits every bracket into K parts at once, K chosen
-    # like the flips' (a fixed cost per call against the cost per point)
-    # per view: views rendered together split each bracket as a view alone would
-    n_open = np.bincount(view, minlength=s.views.k)
-    ks = 2 ** np.arange(1, int(np.log2(tol.SECTIONS)) + 1)
-    per_bit = (vis.cost_per_call + n_open[:, None] * (ks - 1) * vis.cost_per_point) / np.log2(ks)
-    Kv = ks[np.argmin(per_bit, axis=1)][view]  # per bracket
+    # K-section on the count, K chosen as for the flips
+    K = sections(view, np.ones(len(a), dtype=bool), s.views.k, vis)
     for _ in range(tol.BISECTION_MAX_STEPS):
         go = np.flatnonzero(hi - lo > DEPTH_RTOL * span)
         if not len(go):
             break
-        k = Kv[go]
-        m = k - 1  # sub-points of each bracket
-        rep = np.repeat(go, m)
-        start = np.cumsum(m) - m
-        jj = np.arange(len(rep)) - np.repeat(start, m) + 1  # 1 .. m in each bracket
-        tm = lo[rep] + (hi[rep] - lo[rep]) * (jj / np.repeat(k, m))
+        rep, tm, first_differing = sub_points(lo, hi, go, K[go])
         xyz, _, xy = s.evaluate(cid[rep], tm, True)
         n = np.maximum(vis.sheets(xyz, xy, owner[rep], kind[rep], view=view[rep]), 1)
-        # the first sub-point whose depth differs from lo's (none: the last part)
-        first = np.minimum.reduceat(np.where(n != dlo[rep], jj - 1, np.repeat(m, m)), start)
-        has_lo, has_hi = first > 0, first < m
-        lo[go[has_lo]] = tm[(start + first - 1)[has_lo]]
-        hi[go[has_hi]] = tm[(start + first)[has_hi]]
-        dhi[go[has_hi]] = n[(start + first)[has_hi]]
+        new_lo, new_hi = first_differing(n != dlo[rep])
+        lo[go[new_lo >= 0]] = tm[new_lo[new_lo >= 0]]
+        moved = new_hi >= 0
+        hi[go[moved]] = tm[new_hi[moved]]
+        dhi[go[moved]] = n[new_hi[moved]]
     t = np.column_stack([lo, hi]).ravel()
     c = np.repeat(cid, 2)
     xyz, uv, xy = s.evaluate(c, t, True)

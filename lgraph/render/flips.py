@@ -400,6 +400,40 @@ def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
     return np.where((r > 0) & (r < 1), r, 0.5)
 
 
+def sections(view: np.ndarray, open_: np.ndarray, k_views: int, vis: Occlusion) -> np.ndarray:
+    """``K`` for K-section, per bracket (brackets in views ``view``; those
+    ``open_`` counted): the fixed cost of a step against its sub-points'
+    tests, the least cost per bit gained (deterministic: no timing); per
+    view, so that views rendered together split a bracket as a view alone
+    would."""
+    n_open = np.bincount(view[open_], minlength=k_views)
+    ks = 2 ** np.arange(1, int(np.log2(tol.SECTIONS)) + 1)
+    per_bit = (vis.cost_per_call + n_open[:, None] * (ks - 1) * vis.cost_per_point) / np.log2(ks)
+    return ks[np.argmin(per_bit, axis=1)][view]
+
+
+def sub_points(lo: np.ndarray, hi: np.ndarray, idx: np.ndarray, k: np.ndarray) -> tuple:
+    """The ``k - 1`` sub-points splitting brackets ``lo[idx] .. hi[idx]`` into
+    ``k`` parts: ``(rep, t, first_differing)`` with ``rep`` the bracket of
+    every sub-point and ``first_differing(differs)`` -- given which
+    sub-points differ from their bracket's ``lo`` -- the rows (into ``t``) of
+    the new ``lo`` and ``hi`` of every bracket (-1: unchanged), keeping the
+    first sub-bracket whose ends differ (none: the last part)."""
+    m = k - 1
+    rep = np.repeat(idx, m)
+    start = np.cumsum(m) - m
+    j = np.arange(len(rep)) - np.repeat(start, m) + 1  # 1 .. m in each bracket
+    t = lo[rep] + (hi[rep] - lo[rep]) * (j / np.repeat(k, m))
+
+    def first_differing(differs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        first = np.minimum.reduceat(np.where(differs, j - 1, np.repeat(m, m)), start)
+        new_lo = np.where(first > 0, start + first - 1, -1)
+        new_hi = np.where(first < m, start + first, -1)
+        return new_lo, new_hi
+
+    return rep, t, first_differing
+
+
 def _k_section(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     """Remaining flips: each step splits every bracket into ``K`` parts at once
     (the exactness of bisection in ``1/log2(K)`` of the steps), keeping the
@@ -412,30 +446,18 @@ def _k_section(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     # cost of a step: a fixed part plus the sub-points times the cost of a test;
     # pick the K with the least cost per bit gained (deterministic: no timing).
     # Per view: views rendered together split each bracket as a view alone would
-    view = s.view[fl.cid]
-    n_open = np.bincount(view[still], minlength=s.views.k)
-    ks = 2 ** np.arange(1, int(np.log2(tol.SECTIONS)) + 1)
-    per_bit = (vis.cost_per_call + n_open[:, None] * (ks - 1) * vis.cost_per_point) / np.log2(ks)
-    K = ks[np.argmin(per_bit, axis=1)][view]  # per bracket
+    K = sections(s.view[fl.cid], still, s.views.k, vis)  # per bracket
     for _ in range(tol.BISECTION_MAX_STEPS):
         idx = np.nonzero(fl.open())[0]
         if not len(idx):
             break
-        k = K[idx]
-        m = k - 1  # sub-points of each bracket
-        rep = np.repeat(idx, m)
-        start = np.cumsum(m) - m
-        j = np.arange(len(rep)) - np.repeat(start, m) + 1  # 1 .. m in each bracket
-        lo = fl.lo[rep]
-        tm = lo + (fl.hi[rep] - lo) * (j / np.repeat(k, m))
+        rep, tm, first_differing = sub_points(fl.lo, fl.hi, idx, K[idx])
         c = fl.cid[rep]
         xyz, _, xy = s.evaluate(c, tm, True)
         h = vis.hidden(xyz, xy, fl.owner[rep], fl.kind[rep], view=s.view[c])
-        # first sub-point whose state differs from lo's; none: flip in the last part
-        first = np.minimum.reduceat(np.where(h != fl.hlo[rep], j - 1, np.repeat(m, m)), start)
-        has_lo, has_hi = first > 0, first < m
-        fl.lo[idx[has_lo]] = tm[(start + first - 1)[has_lo]]
-        fl.hi[idx[has_hi]] = tm[(start + first)[has_hi]]
+        lo, hi = first_differing(h != fl.hlo[rep])
+        fl.lo[idx[lo >= 0]] = tm[lo[lo >= 0]]
+        fl.hi[idx[hi >= 0]] = tm[hi[hi >= 0]]
 
 
 def locate_flips(s: Samples, vis: Occlusion) -> None:

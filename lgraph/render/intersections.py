@@ -37,6 +37,7 @@ from ..families.cache import family_batches
 from ..families.intersection import IntersectionCurve
 from ..families.level import level_batches
 from ..geometry.transforms import Transform
+from ..geometry.vectors import box_corners
 from ..surfaces._base import Domain, Surface
 
 if TYPE_CHECKING:
@@ -73,12 +74,7 @@ class Placed(Surface):
         return self.transform.apply_vector(x1), self.transform.apply_vector(x2)
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.surface.bounds()
-        corners = np.array(
-            [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
-        )
-        c = self.transform.apply(corners)
-        return c.min(axis=0), c.max(axis=0)
+        return _moved_box(self.surface, self.transform)
 
 
 @attrs.frozen
@@ -122,12 +118,9 @@ class Meeting(Family):
         return level_batches(surface, f, [0.0], spread or 1.0, family="intersection")
 
 
-def _world_box(node: Node) -> tuple[np.ndarray, np.ndarray]:
-    lo, hi = node.surface.bounds()
-    corners = np.array(
-        [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
-    )
-    c = node.transform.apply(corners)
+def _moved_box(surface: Surface, transform: Transform) -> tuple[np.ndarray, np.ndarray]:
+    """The box of ``surface``'s box moved by ``transform``."""
+    c = transform.apply(box_corners(*surface.bounds()))
     return c.min(axis=0), c.max(axis=0)
 
 
@@ -138,7 +131,9 @@ def meeting_pairs(nodes: tuple[Node, ...], first: np.ndarray) -> list[tuple[int,
     cand = [k for k, n in enumerate(nodes) if n.surface is not None and first[k] == k]
     if len(cand) < 2:
         return []
-    boxes = np.array([np.concatenate(_world_box(nodes[k])) for k in cand])
+    boxes = np.array(
+        [np.concatenate(_moved_box(nodes[k].surface, nodes[k].transform)) for k in cand]
+    )
     lo, hi = boxes[:, :3], boxes[:, 3:]
     # sorted by the lower x: each box meets only the boxes starting before its end
     order = np.argsort(lo[:, 0], kind="stable")

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _tolerance as tol
+from ..geometry.vectors import box_corners
 from ..projectors import CentralProjector, Projector
 from ..surfaces._base import CONTOUR, OFF
 from ..surfaces._quadric_ray import (
@@ -105,9 +106,7 @@ class Occlusion:
         world = {}
         for j, node in hiding:
             lo, hi = node.surface.bounds()
-            corners = np.array(
-                [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
-            )
+            corners = box_corners(lo, hi)
             world[j] = node.transform.apply(corners)
         allc = np.concatenate(list(world.values())) if world else np.zeros((1, 3))
         allc = allc[np.isfinite(allc).all(axis=1)]
