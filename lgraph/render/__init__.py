@@ -400,13 +400,13 @@ def _render(
     # hidden runs split where the number of sheets in front changes
     if hidden_lines:
         # a hiding surface asked one by one that draws no contour leaves a gap
-        # in the net: then every hidden sample is counted
-        # in the net, and so do surfaces that may meet without their intersection drawn
+        # in the net, and so do surfaces that may meet without their
+        # intersection drawn: then every hidden sample is counted
         every = any(not nodes[j].contour for j in vis.twins)
         every |= any(
             nodes[a].hides and nodes[b].hides for a, b in set(meeting) - set(drawn_meetings)
         )
-        depth = occlusion_depth(s, vis, every)
+        depth = occlusion_depth(s, vis, every, diag)
     else:
         depth = s.hidden.astype(np.int64)
     strokes = _strokes(s, nodes, hidden_lines, rule, [1e-12 * d for d in diag], depth)

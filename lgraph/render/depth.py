@@ -44,6 +44,11 @@ _MAX_PASSES = 1
 #: changes of depth are located to this fraction of the curve's parameter
 #: span, as the flips of visibility
 DEPTH_RTOL = tol.BISECTION_RTOL
+#: a run of one depth whose image is smaller than this fraction of the figure
+#: takes its hidden neighbour's depth: within a few ``SELF_HIT_RTOL`` of a
+#: contour the count is ambiguous (the fold's own root is that close to the
+#: point), and no print shows a change that short
+SLIVER_RTOL = 10 * tol.SELF_HIT_RTOL
 
 
 def _count(s: Samples, vis: Occlusion, rows: np.ndarray) -> np.ndarray:
@@ -70,7 +75,9 @@ def _candidates(s: Samples, vis: Occlusion, chord: np.ndarray, every: bool) -> n
     return out
 
 
-def occlusion_depth(s: Samples, vis: Occlusion, every: bool = False) -> np.ndarray:
+def occlusion_depth(
+    s: Samples, vis: Occlusion, every: bool = False, figure: list[float] | None = None
+) -> np.ndarray:
     """The number of sheets in front of every sample (0 where visible);
     inserts both sides of every change of depth along a hidden run.
 
@@ -78,7 +85,10 @@ def occlusion_depth(s: Samples, vis: Occlusion, every: bool = False) -> np.ndarr
     ellipsoid's contour (:func:`_candidates`): every run of hidden samples
     between two such chords is counted at its two ends (and at every sample
     where the ends disagree); ``every`` counts every hidden sample (a scene
-    whose net is incomplete: a hiding surface that draws no contour)."""
+    whose net is incomplete: a hiding surface that draws no contour).
+    With ``figure`` (the size of every view's figure), runs of one depth
+    smaller than ``SLIVER_RTOL`` of it join a hidden neighbour
+    (:func:`_absorb_slivers`)."""
     n = len(s.t)
     depth = np.zeros(n, dtype=np.int64)
     hid = np.flatnonzero(s.hidden)
@@ -130,6 +140,45 @@ def occlusion_depth(s: Samples, vis: Occlusion, every: bool = False) -> np.ndarr
         out[~new] = depth
         out[new] = depth[a]
         depth = out
+    if figure is not None:
+        depth = _absorb_slivers(s, depth, SLIVER_RTOL * np.asarray(figure, dtype=float))
+    return depth
+
+
+def _absorb_slivers(s: Samples, depth: np.ndarray, small: np.ndarray) -> np.ndarray:
+    """Give every hidden run of one depth whose image (to the next run's first
+    sample) is smaller than ``small`` (per view) the depth of its hidden neighbour on the same curve
+    (the one before it, else the one after): a sliver is the count's
+    ambiguity beside a contour, not a change anyone could see."""
+    depth = depth.copy()
+    for _ in range(4):  # a sliver beside slivers: its neighbour's new depth
+        brk = np.flatnonzero((s.cid[1:] != s.cid[:-1]) | (depth[1:] != depth[:-1])) + 1
+        starts = np.concatenate([[0], brk])
+        ends = np.concatenate([brk, [len(depth)]])
+        cid, d = s.cid[starts], depth[starts]
+        same_prev = np.concatenate([[False], cid[1:] == cid[:-1]])
+        same_next = np.concatenate([cid[:-1] == cid[1:], [False]])
+        # a run reaches to the next run's first sample (the change lies between)
+        box = np.maximum.reduceat(s.xy, starts) - np.minimum.reduceat(s.xy, starts)
+        step = np.zeros(len(starts))
+        j = np.flatnonzero(same_next)
+        step[j] = np.abs(s.xy[ends[j]] - s.xy[starts[j]]).max(axis=1)
+        extent = np.maximum(box.max(axis=1), step)
+        prev = np.where(same_prev, np.roll(d, 1), 0)
+        nxt = np.where(same_next, np.roll(d, -1), 0)
+        short = (d > 0) & (extent < small[s.view[cid]])
+        sliver = short & ((prev > 0) | (nxt > 0))
+        if not sliver.any():
+            break
+        # a neighbour that is no sliver itself first: two slivers side by
+        # side do not swap their depths
+        solid_prev = (prev > 0) & ~np.concatenate([[False], short[:-1]])
+        solid_next = (nxt > 0) & ~np.concatenate([short[1:], [False]])
+        firm = sliver & (solid_prev | solid_next)
+        to = np.where(solid_prev, prev, np.where(solid_next, nxt, np.where(prev > 0, prev, nxt)))
+        change = firm if firm.any() else sliver
+        d[change] = to[change]
+        depth = np.repeat(d, ends - starts)
     return depth
 
 
