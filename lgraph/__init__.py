@@ -51,6 +51,7 @@ _EXPORTS: dict[str, str] = {
     "Node": ".scene",
     "Scene": ".scene",
     "SceneFileError": ".scenefile",
+    "SceneFileWarning": ".scenefile",
     "load_scene_file": ".scenefile",
     "SelfIntersection": ".families.self_intersection",
     "Arrow": ".objects.shapes",
@@ -171,7 +172,7 @@ __all__ += [
     "Arrow",
     "Parallelogram",
 ]
-__all__ += ["load_scene_file", "SceneFileError"]
+__all__ += ["load_scene_file", "SceneFileError", "SceneFileWarning"]
 __all__ += ["Label", "Point", "PlacedLabel", "Group"]
 __all__ += ["SurfaceOfRevolution", "Pseudosphere"]
 __all__ += ["Profile", "named_profile", "profile_from_points"]

@@ -3,8 +3,14 @@
 Input errors (a bad scene file, option, output path, ...) are found before
 any rendering where they can be; they exit with status 2 and one message
 ``lgraph <command>: error: ...`` on stderr, no traceback (``--debug`` shows
-it).  An unexpected failure exits with status 1, also without a traceback
-unless ``--debug``.
+it; it is accepted before or after the command).  An unexpected failure
+exits with status 1, also without a traceback unless ``--debug``.
+
+``lgraph render scene.toml -o fig.pdf -o fig.png`` renders once and saves to
+every output.  A ``[save]`` option that only some of the outputs' backends
+take is then a warning, ``lgraph render: warning: scene.toml:12: save.title:
+not an option of the .png backend; ignored for fig.png``, and is left out for
+those outputs; one that none of them takes is an error.
 """
 
 from __future__ import annotations
@@ -12,8 +18,10 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 __all__ = ["main", "demo_scene", "build_parser"]
 
@@ -72,10 +80,61 @@ def _demo(args: argparse.Namespace) -> int:
     return 0
 
 
-def _render(args: argparse.Namespace) -> int:
-    from .scenefile import SceneFileError, load_scene_file
+def _same_file(a: Path, b: Path) -> bool:
+    """Whether ``a`` and ``b`` name one file (an existing one by identity, as
+    ``os.path.samefile``; otherwise by resolved path)."""
+    try:
+        if a.exists() and b.exists():
+            return os.path.samefile(a, b)
+        a, b = a.resolve(), b.resolve()
+    except (OSError, RuntimeError):  # unreadable, or a symbolic link loop
+        a, b = a.absolute(), b.absolute()
+    return os.path.normcase(a) == os.path.normcase(b)
 
-    out = check_output(args.output or Path(args.scene).with_suffix(".pdf"))
+
+def _refuse_scene_file(out: Path, scene: str | os.PathLike[str]) -> None:
+    """Refuse to write over the scene file being read."""
+    if _same_file(out, Path(scene)):
+        raise InputError(f"output {str(out)!r} is the scene file itself; give another output file")
+
+
+def check_outputs(
+    scene: str | os.PathLike[str], outputs: Sequence[str | os.PathLike[str]]
+) -> list[Path]:
+    """Check the outputs of one rendering before any work: none is the scene
+    file, none is given twice, and each passes :func:`check_output`.
+    Raises :class:`InputError`."""
+    outs = [Path(o) for o in outputs]
+    for i, out in enumerate(outs):
+        _refuse_scene_file(out, scene)
+        for earlier in outs[:i]:
+            if _same_file(out, earlier):
+                also = f" (also as {str(earlier)!r})" if str(earlier) != str(out) else ""
+                raise InputError(f"output {str(out)!r} is given twice{also}; give each once")
+    return [check_output(out) for out in outs]
+
+
+def _load_scene(scene: str, outputs: list[Path], command: str) -> tuple[Any, Any, dict[str, Any]]:
+    """``load_scene_file`` for ``outputs``; an ignored ``[save]`` option is
+    printed as ``lgraph <command>: warning: ...`` on stderr."""
+    from .scenefile import SceneFileError, SceneFileWarning, load_scene_file
+
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", SceneFileWarning)
+            loaded = load_scene_file(scene, output=outputs)
+    except SceneFileError as e:
+        raise InputError(str(e)) from None
+    for w in caught:
+        if issubclass(w.category, SceneFileWarning):
+            print(f"lgraph {command}: warning: {w.message}", file=sys.stderr)
+        else:  # not ours: as if not caught
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, source=w.source)
+    return loaded
+
+
+def _render(args: argparse.Namespace) -> int:
+    outs = check_outputs(args.scene, args.output or [Path(args.scene).with_suffix(".pdf")])
     for name in ("width", "height"):  # physical sizes: checked before rendering
         if getattr(args, name, None) is not None:
             from .units import length_pt
@@ -84,19 +143,22 @@ def _render(args: argparse.Namespace) -> int:
                 length_pt(getattr(args, name), name)
             except ValueError as e:
                 raise InputError(f"--{name}: {e}") from None
-    try:
-        scene, projector, options = load_scene_file(args.scene, output=out)
-    except SceneFileError as e:
-        raise InputError(str(e)) from None
-    drawing = scene.render(projector, **options.get("render", {}))
-    save = dict(options.get("save", {}))
-    for name in ("width", "height"):  # the command line wins over the scene file
-        if getattr(args, name, None) is not None:
-            save[name] = args.__dict__[name]
-    if args.plotter:  # tolerances on the page as saved
-        drawing = drawing.for_plotter(width=save.get("width"))
-    path = drawing.save(out, **save)
-    print(f"wrote {Path(path).resolve()}")
+    scene, projector, options = _load_scene(args.scene, outs, "render")
+    drawing = scene.render(projector, **options.get("render", {}))  # once for every output
+    plotted: dict[Any, Any] = {}  # --plotter: the cleaned drawing, by figure width
+    for out, save_options in zip(outs, options["save"], strict=True):
+        save = dict(save_options)
+        for name in ("width", "height"):  # the command line wins over the scene file
+            if getattr(args, name, None) is not None:
+                save[name] = args.__dict__[name]
+        figure = drawing
+        if args.plotter:  # tolerances on the page as saved
+            width = save.get("width")
+            if width not in plotted:
+                plotted[width] = drawing.for_plotter(width=width)
+            figure = plotted[width]
+        path = figure.save(out, **save)
+        print(f"wrote {Path(path).resolve()}")
     return 0
 
 
@@ -113,6 +175,8 @@ def _animate(args: argparse.Namespace) -> int:
             f"unknown suffix {out.suffix!r} for an animation; use .gif, .png/.apng (APNG), "
             ".webp, .pdf (a page per frame) or a folder name without suffix (numbered frames)"
         )
+    if suffix:
+        _refuse_scene_file(out, args.scene)
     _output_folder(out if not suffix else (out.parent if str(out.parent) else Path(".")))
     client_class = None
     if args.scheduler:
@@ -176,6 +240,15 @@ def _suffixes() -> str:
         return ".pdf, .png, .svg"
 
 
+def _add_debug(parser: argparse.ArgumentParser, default: Any) -> None:
+    parser.add_argument(
+        "--debug",
+        action="store_true",
+        default=default,
+        help="show the Python traceback of an error",
+    )
+
+
 def build_parser() -> argparse.ArgumentParser:
     from . import __version__
 
@@ -185,7 +258,7 @@ def build_parser() -> argparse.ArgumentParser:
         "with exact hidden-line removal.",
     )
     p.add_argument("--version", action="version", version=f"lgraph {__version__}")
-    p.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
+    _add_debug(p, default=False)
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     d = sub.add_parser("demo", help="write lgraph-demo.pdf and lgraph-demo.png")
     d.add_argument(
@@ -197,7 +270,10 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument(
         "-o",
         "--output",
-        help=f"output file, by suffix: {_suffixes()}; default: the scene's name with .pdf",
+        action="append",
+        metavar="OUTPUT",
+        help=f"output file, by suffix: {_suffixes()}; repeat for several (rendered once, "
+        "saved to each); default: the scene's name with .pdf",
     )
     r.add_argument("--width", help="figure width, e.g. 8.5cm, 85mm, 3.3in, 240pt")
     r.add_argument("--height", help="figure height (with --width: fit inside, aspect kept)")
@@ -256,8 +332,12 @@ def build_parser() -> argparse.ArgumentParser:
         "--only", nargs="*", default=None, help="only figures whose name contains one of these"
     )
     g.set_defaults(func=_gallery)
-    pl = sub.add_parser("plugins", help="list installed plugins")
+    pl = sub.add_parser(
+        "plugins", help="list the surfaces, line families and backends, and installed plugins"
+    )
     pl.set_defaults(func=_plugins)
+    for command in (d, r, a, g, pl):  # --debug also after the command
+        _add_debug(command, default=argparse.SUPPRESS)  # keeps the value given before it
     return p
 
 

@@ -11,7 +11,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import attrs
@@ -89,6 +89,38 @@ class Curve:
                 "Curve: func must map an array of shape (n,) to shape (n, 3), "
                 f"got shape {probe.shape} for n=2"
             )
+
+    @classmethod
+    def from_formulas(
+        cls,
+        x: str,
+        y: str,
+        z: str,
+        t: tuple[Any, Any],
+        *,
+        constants: Mapping[str, float] | None = None,
+        closed: bool = False,
+    ) -> Curve:
+        """The curve ``(x, y, z)(t)`` of three formulas (:mod:`lgraph.formula`:
+        never evaluated as Python) over the range ``t`` (numbers or formulas of
+        ``constants``), with exact derivatives.
+
+        >>> c = Curve.from_formulas("cos(t)", "sin(t)", "t / (2*pi)", (0, "2*pi"))
+        >>> c(np.array([np.pi])).round(12).tolist()
+        [[-1.0, 0.0, 0.5]]
+        """
+        from .formula_maps import FormulaMap, constant_range, constants_dict
+
+        texts, c = (x, y, z), constants_dict(constants)
+        t0, t1 = constant_range(t, c, "Curve.from_formulas: t")
+        return cls(
+            FormulaMap(texts, ("t",), c),
+            t0,
+            t1,
+            derivative_func=FormulaMap(texts, ("t",), c, order=1),
+            second_derivative_func=FormulaMap(texts, ("t",), c, order=2),
+            closed=closed,
+        )
 
     def __call__(self, t: Any) -> np.ndarray:
         return np.asarray(self.func(np.asarray(t, dtype=float)), dtype=float)

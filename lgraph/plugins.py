@@ -435,10 +435,16 @@ def installed_plugins(load: bool = True) -> list[PluginInfo]:
 
 
 def describe_plugins() -> str:
-    """A table of installed plugins (name, kind, distribution, version, status)
-    and a count of built-ins, as printed by ``lgraph plugins``.
+    """What ``lgraph plugins`` prints: a table of the installed plugins (name,
+    kind, distribution, version, status), the names of every surface, line
+    family and backend (built-in, registered and from plugins; wrapped
+    lines such as ``surfaces (26): arrow, catenoid, ...``) and, last, a
+    count of the built-ins.
 
-    >>> describe_plugins().splitlines()[-1]
+    >>> text = describe_plugins()
+    >>> all(f"{kind} (" in text for kind in ("surfaces", "families", "backends"))
+    True
+    >>> text.splitlines()[-1]
     'built-in: ... surfaces, ... line families, ... backends'
     """
     from ._backend_table import BACKENDS as _BACKENDS
@@ -446,20 +452,45 @@ def describe_plugins() -> str:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PluginWarning)  # the status column says it
         infos = installed_plugins(load=True)
+        names = {
+            "surfaces": surface_names(),
+            "families": family_names(),
+            "backends": sorted(_BACKENDS),
+        }
     n_surf = len(_builtin_surfaces())
     n_fam = len([k for k, v in _builtin_families().items() if not _from_plugin("family", k)])
     n_back = len([k for k in _BACKENDS if not _from_plugin("backend", k)])
     footer = f"built-in: {n_surf} surfaces, {n_fam} line families, {n_back} backends"
+    listed = [_name_list(f"{kind} ({len(found)}):", found) for kind, found in names.items()]
     if not infos:
         groups = ", ".join(GROUPS.values())
-        return f"no plugins installed (entry-point groups {groups})\n{footer}"
+        return "\n".join([f"no plugins installed (entry-point groups {groups})", *listed, footer])
     rows = [("NAME", "KIND", "DISTRIBUTION", "VERSION", "STATUS")]
     for i in infos:
         status = i.status.splitlines()[0] if i.status else ""
         rows.append((i.name, i.kind, i.distribution, i.version, status))
     widths = [max(len(r[c]) for r in rows) for c in range(4)]
     lines = ["  ".join(r[c].ljust(widths[c]) for c in range(4)) + "  " + r[4] for r in rows]
-    return "\n".join([*lines, footer])
+    return "\n".join([*lines, "", *listed, footer])
+
+
+def _name_list(title: str, names: list[str], width: int = 79) -> str:
+    """``title`` and the comma-separated ``names``, wrapped at ``width`` with
+    an indent of 4 (a name is never split).
+
+    >>> print(_name_list("backends (3):", [".pdf", ".png", ".svg"]))
+    backends (3): .pdf, .png, .svg
+    """
+    import textwrap
+
+    return textwrap.fill(
+        ", ".join(names) or "(none)",
+        width=width,
+        initial_indent=f"{title} ",
+        subsequent_indent="    ",
+        break_long_words=False,
+        break_on_hyphens=False,
+    )
 
 
 def _from_plugin(kind: str, name: str) -> bool:

@@ -3,8 +3,10 @@ parameters and families), ``[[labels]]`` and ``[[points]]`` tables.
 
 Parameters are checked against the constructor's signature (attrs fields or
 :func:`inspect.signature`): known names, numbers or arrays of numbers,
-strings only where the constructor declares a ``str``.  No formula of
-docs/mathematics.rst.
+strings only where the constructor declares a ``str`` (elsewhere a string is
+a formula of the file's constants, ``"2*pi"``).  Surfaces written as formulas
+(``surface = "parametric"``, ``"revolution"``) are built in ``_formulas.py``.
+No formula of docs/mathematics.rst.
 """
 
 from __future__ import annotations
@@ -13,6 +15,13 @@ import re
 from typing import Any
 
 from ._errors import Key, _Collect, _fail, _Invalid
+from ._formulas import (
+    PARAMETRIC,
+    REVOLUTION,
+    level_function,
+    parametric_surface,
+    revolution_surface,
+)
 from ._locate import _show
 from ._values import (
     _boolean,
@@ -27,6 +36,13 @@ from ._values import (
     _transform,
     _vector,
 )
+
+#: surfaces written as formulas: their keys (besides those of every object)
+#: and their builders
+_FORMULA_SURFACES = {
+    "parametric": (PARAMETRIC, parametric_surface),
+    "revolution": (REVOLUTION, revolution_surface),
+}
 
 _OBJECT = (
     "surface",
@@ -47,17 +63,30 @@ def _object(
     flags, each checked on its own (all their problems are reported)."""
     from ..plugins import get_surface
 
-    check(_only, key, obj, _OBJECT)
-    name = _string(key + ("surface",), _required(key, obj, "surface"))
-    try:
-        cls = get_surface(name)
-    except KeyError as exc:
-        raise _Invalid(key + ("surface",), str(exc.args[0])) from None
-    params = _table(key + ("params",), obj.get("params", {}))
-    kwargs = _params(key + ("params",), cls, name, params)
-    surface = _call(key + ("params",), f"surface {name!r}", cls, kwargs)
+    name = obj.get("surface")
+    if name in _FORMULA_SURFACES:  # formulas: their keys in the object's table
+        keys, build = _FORMULA_SURFACES[name]
+        check(_only, key, obj, tuple(k for k in _OBJECT if k != "params") + keys)
+        surface = build(key, obj)
+    else:
+        check(_only, key, obj, _OBJECT)
+        name = _string(key + ("surface",), _required(key, obj, "surface"))
+        if name == "parametric_surface":
+            raise _Invalid(
+                key + ("surface",),
+                "a parametric_surface needs a Python function; in a scene file write "
+                'surface = "parametric" with formulas x, y, z of u, v and ranges u, v',
+            )
+        try:
+            cls = get_surface(name)
+        except KeyError as exc:
+            raise _Invalid(key + ("surface",), str(exc.args[0])) from None
+        params = _table(key + ("params",), obj.get("params", {}))
+        kwargs = _params(key + ("params",), cls, name, params)
+        surface = _call(key + ("params",), f"surface {name!r}", cls, kwargs)
     families = []
-    fams = obj.get("families", ["parameter_lines"])
+    # default: the class's own (parameter lines for most; an arrow: its outline)
+    fams = obj.get("families", list(getattr(surface, "default_families", ("parameter_lines",))))
     if not isinstance(fams, list):
         check(_fail, key + ("families",), f"expected an array of families, got {_show(fams)}")
         fams = []
@@ -120,18 +149,19 @@ def _param_value(key: Key, v: Any, annotation: str) -> Any:
         if "bool" in annotation:
             return v
         raise _Invalid(key, f"expected a number, got {_show(v)}")
-    if _is_number(v):
+    if _is_number(v) or callable(v):  # callable: a formula built here (level functions)
         return v
     if isinstance(v, str):
-        if re.search(r"\bstr\b|Literal", annotation):
+        if re.search(r"\bstr\b|Literal|\bAny\b", annotation):  # label = "$N$"
             return v
-        raise _Invalid(key, f"expected a number, got {_show(v)}")
+        return _number(key, v)  # a formula of the file's constants
     if isinstance(v, list):
         return tuple(_param_value(key + (k,), x, "") for k, x in enumerate(v))
     raise _Invalid(key, f"expected a number or an array of numbers, got {_show(v)}")
 
 
 def _family(key: Key, f: Any, surface: Any) -> Any:
+    from ..families.level import NAMED_FUNCTIONS
     from ..plugins import get_family
 
     if isinstance(f, str):
@@ -146,6 +176,9 @@ def _family(key: Key, f: Any, surface: Any) -> Any:
     except KeyError as exc:
         raise _Invalid(name_key, str(exc.args[0])) from None
     args = {k: v for k, v in f.items() if k != "name"}
+    fn = args.get("function")
+    if name == "level_lines" and isinstance(fn, str) and fn not in NAMED_FUNCTIONS:
+        args["function"] = level_function(key + ("function",), fn, args.get("argument"))
     kwargs = _params(key, cls, f"family {name!r}", args)
     family = _call(key, f"family {name!r}", cls, kwargs)
     try:  # catch families the surface cannot draw (no closed forms) before rendering

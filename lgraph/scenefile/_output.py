@@ -3,12 +3,16 @@
 
 ``[save]`` keys are checked against the options of the backend that writes
 the output's suffix (:func:`lgraph.backends.backend_options`, plugin
-backends included).  No formula of docs/mathematics.rst.
+backends included); for several outputs at once, against those of all their
+backends (an option only some of them take is ignored for the others, with a
+``SceneFileWarning`` issued by :func:`lgraph.load_scene_file`).  No formula of
+docs/mathematics.rst.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 from ._errors import Key, _Collect, _fail, _Invalid
@@ -177,27 +181,85 @@ def _typed(key: Key, v: Any, default: Any) -> Any:
     return v
 
 
-def _save(key: Key, s: dict[str, Any], suffix: str = ".pdf") -> dict[str, Any]:
+class SceneFileWarning(UserWarning):
+    """A part of a scene file that is ignored: a ``[save]`` option that the
+    backend of one of several outputs does not take (the others do)."""
+
+
+@dataclass
+class _SaveOutputs:
+    """``[save]`` checked for several outputs: ``options`` holds the options of
+    each output (in the order given), ``ignored`` the options left out for an
+    output whose backend does not take them, as ``(key, output index)``."""
+
+    options: list[dict[str, Any]]
+    ignored: list[tuple[Key, int]] = field(default_factory=list)
+
+
+_FAILED = object()
+
+
+def _save(
+    key: Key, s: dict[str, Any], suffix: str | Sequence[str] = ".pdf"
+) -> dict[str, Any] | _SaveOutputs:
     """``[save]``: options of the backend that writes ``suffix`` files
-    (:func:`lgraph.backends.backend_options`; plugin backends included)."""
+    (:func:`lgraph.backends.backend_options`; plugin backends included).
+
+    With one suffix (a string) an option its backend does not take is an
+    error, and the checked options are returned.  With a sequence of
+    suffixes (several outputs, rendered once) only an option that none of
+    their backends takes is an error; one that some do not take is left out
+    for those outputs and listed in the returned ``_SaveOutputs``.
+    """
+    if isinstance(suffix, str):
+        return _save_outputs(key, s, [suffix]).options[0]
+    return _save_outputs(key, s, list(suffix))
+
+
+def _save_outputs(key: Key, s: dict[str, Any], suffixes: list[str]) -> _SaveOutputs:
     from ..backends import backend_options
     from ..plugins import PluginError
 
-    try:
-        known = backend_options(suffix)
-    except (ValueError, PluginError) as exc:
-        raise _Invalid(key, str(exc).splitlines()[0]) from None
-    known = {**known, **{k: None for k in _DRAWING_SAVE}}
+    known: dict[str, dict[str, Any]] = {}  # lower-case suffix -> option -> default
+    for suffix in suffixes:
+        if suffix.lower() in known:
+            continue
+        try:
+            options = backend_options(suffix)
+        except (ValueError, PluginError) as exc:
+            raise _Invalid(key, str(exc).splitlines()[0]) from None
+        known[suffix.lower()] = {**options, **{k: None for k in _DRAWING_SAVE}}
+    if len(known) == 1:
+        shown = suffixes[0]
+    else:
+        *rest, last = known
+        shown = f"{', '.join(rest)} and {last}"
+    allowed = ", ".join(sorted({k for options in known.values() for k in options})) or "(none)"
     check = _Collect()
-    out: dict[str, Any] = {}
+    per: dict[str, dict[str, Any]] = {suffix: {} for suffix in known}
     for k, v in s.items():
-        if k not in known:
-            allowed = ", ".join(sorted(known)) or "(none)"
-            check(
-                _fail, key + (k,), f"unknown option {k!r} for {suffix} output; allowed: {allowed}"
-            )
+        having = {suffix: options[k] for suffix, options in known.items() if k in options}
+        if not having:
+            check(_fail, key + (k,), f"unknown option {k!r} for {shown} output; allowed: {allowed}")
             continue
         extra = _SAVE.get(k)
-        out[k] = check(extra or _typed, key + (k,), v, *(() if extra else (known[k],)))
+        if extra is not None:
+            value = check(extra, key + (k,), v, default=_FAILED)
+            values = {suffix: value for suffix in having} if value is not _FAILED else {}
+        else:
+            values = check(_typed_each, key + (k,), v, having, default={})
+        for suffix, value in values.items():
+            per[suffix][k] = value
     check.raise_all()
-    return out
+    ignored = [
+        (key + (k,), i)
+        for i, suffix in enumerate(suffixes)
+        for k in s
+        if k not in known[suffix.lower()]
+    ]
+    return _SaveOutputs([dict(per[suffix.lower()]) for suffix in suffixes], ignored)
+
+
+def _typed_each(key: Key, v: Any, defaults: dict[str, Any]) -> dict[str, Any]:
+    """``v`` checked against the default of each backend (by suffix) that takes it."""
+    return {suffix: _typed(key, v, default) for suffix, default in defaults.items()}

@@ -9,31 +9,57 @@ are read in ``_members.py`` (objects, labels, points) and ``_output.py``
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
-from ._errors import Key, _Collect, _fail, _Invalid
+from ._errors import Key, _Collect, _Invalid
+from ._formulas import curve, read_constants
 from ._members import _label, _object, _point
 from ._output import _page, _projector, _render, _save
-from ._values import _only, _required, _styles, _table, _transform
+from ._values import _only, _required, _styles, _table, _transform, constants_of
 
-_TOP = ("projector", "object", "labels", "points", "group", "page", "render", "save")
+_TOP = (
+    "projector",
+    "constants",
+    "object",
+    "curve",
+    "labels",
+    "points",
+    "group",
+    "page",
+    "render",
+    "save",
+)
 
 
-_MEMBERS = ("object", "labels", "points", "group")
+_MEMBERS = ("object", "curve", "labels", "points", "group")
 
 
-def parse_scene(data: Mapping[str, Any], suffix: str = ".pdf") -> tuple[Any, Any, dict[str, Any]]:
+def parse_scene(
+    data: Mapping[str, Any], suffix: str | Sequence[str] = ".pdf"
+) -> tuple[Any, Any, dict[str, Any]]:
     """Build ``(scene, projector, options)`` from parsed TOML ``data``.
 
-    ``suffix`` is that of the output file: ``[save]`` keys are checked
-    against the options of its backend.  Raises ``_Invalid`` (with the
+    ``suffix`` is that of the output file (or those of several): ``[save]``
+    keys are checked against the options of its backend (an option that only
+    some of several backends take is kept for those).  ``[constants]`` are
+    read first: every formula and number of the file may use them.  Raises ``_Invalid`` (with the
     offending key, and every further problem in ``more``) when anything is
     wrong; nothing is rendered here.
     """
 
     check = _Collect()
     check(_only, (), data, _TOP)
+    constants = {}
+    if "constants" in data:
+        constants = check(read_constants, ("constants",), data["constants"], default={})
+    with constants_of(constants):
+        return _parse(data, suffix, check)
+
+
+def _parse(
+    data: Mapping[str, Any], suffix: str | Sequence[str], check: _Collect
+) -> tuple[Any, Any, dict[str, Any]]:
     projector = check(lambda: _projector(("projector",), _required((), data, "projector")))
     if not any(k in data for k in _MEMBERS):
         check(_required, (), data, "object")
@@ -83,10 +109,13 @@ def _members(key: Key, table: Mapping[str, Any], check: _Collect | None = None) 
         if built is None:
             continue
         item, families, kw = built
-        try:
-            scene.add(item, *families, **kw)
-        except (TypeError, ValueError) as exc:
-            check(_fail, ok, str(exc))
+        check(_add, ok, scene, item, kw, families)
+    if "curve" in table:
+        tables = check(_array_of_tables, key + ("curve",), table["curve"], "curve", default=[])
+        for k, t in enumerate(tables):
+            built = check(curve, key + ("curve", k), t)
+            if built is not None:
+                check(_add, key + ("curve", k), scene, built[0], built[1])
     for name, build in (("labels", _label), ("points", _point)):
         if name in table:
             tables = check(_array_of_tables, key + (name,), table[name], name, default=[])
@@ -103,10 +132,17 @@ def _members(key: Key, table: Mapping[str, Any], check: _Collect | None = None) 
     return scene
 
 
+def _add(key: Key, scene: Any, item: Any, kw: dict[str, Any], families: Any = ()) -> None:
+    try:
+        scene.add(item, *families, **kw)
+    except (TypeError, ValueError) as exc:
+        raise _Invalid(key, str(exc)) from None
+
+
 def _group(gk: Key, g: dict[str, Any], scene: Any, check: _Collect) -> None:
     _only(gk, g, ("transform", "style") + _MEMBERS)
     if not any(m in g for m in _MEMBERS):
-        raise _Invalid(gk, "a group needs members: object, labels, points or group tables")
+        raise _Invalid(gk, "a group needs members: object, curve, labels, points or group tables")
     kw: dict[str, Any] = {}
     if "transform" in g:
         kw["transform"] = _transform(gk + ("transform",), g["transform"])

@@ -1,17 +1,53 @@
 """Typed values of a scene file: numbers, vectors, strings, tables, and the
 compound values that objects, groups and ``[render]`` share (transform steps,
-style tables), each checked and reported by key."""
+style tables), each checked and reported by key.
+
+A number may be written as a formula of the file's constants (``"2*pi"``):
+the constants are held in a context variable while the file is read
+(:func:`constants_of`)."""
 
 from __future__ import annotations
 
+import contextvars
 import math
 import numbers
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
+from types import MappingProxyType
 from typing import Any
 
 from ._errors import Key, _Invalid
 from ._locate import _key_text, _show
+
+#: the constants of the scene file being read (name -> value)
+_CONSTANTS: contextvars.ContextVar[Mapping[str, float]] = contextvars.ContextVar(
+    "lgraph_scene_constants", default=MappingProxyType({})
+)
+
+
+@contextmanager
+def constants_of(values: Mapping[str, float]) -> Iterator[None]:
+    """Make ``values`` the constants of the file while it is read: every
+    number of the file may be a formula of them."""
+    token = _CONSTANTS.set(values)
+    try:
+        yield
+    finally:
+        _CONSTANTS.reset(token)
+
+
+def _formula(key: Key, text: Any, variables: tuple[str, ...]) -> Any:
+    """A :class:`~lgraph.formula.Formula` of ``variables`` and the file's
+    constants; a problem names the key."""
+    from ..formula import FormulaError, formula
+
+    if not isinstance(text, str):
+        raise _Invalid(key, f"expected a formula (a string), got {_show(text)}")
+    try:
+        return formula(text, variables, _CONSTANTS.get())
+    except FormulaError as exc:
+        raise _Invalid(key, str(exc)) from None
 
 
 # -- typed getters ---------------------------------------------------------------
@@ -20,6 +56,8 @@ def _is_number(v: Any) -> bool:
 
 
 def _number(key: Key, v: Any, *, positive: bool = False) -> float:
+    if isinstance(v, str):  # a formula of the file's constants ("2*pi")
+        v = _formula(key, v, ()).value()
     if not _is_number(v):
         raise _Invalid(key, f"expected a number, got {_show(v)}")
     if not math.isfinite(v):

@@ -280,6 +280,8 @@ def _hits_chunk(
                 roots_s.append(s[ok])
     if not count:
         return out
+    if not roots_r:  # no ray met a patch box
+        return np.zeros(nray, dtype=np.int64)
     return _distinct(np.concatenate(roots_r), np.concatenate(roots_s), 1e-7 * size / vnorm, nray)
 
 

@@ -16,7 +16,7 @@ catenoid, Enneper's surface).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import attrs
@@ -71,6 +71,12 @@ class ParametricSurface(Surface):
         ``poles=((True, False), False)``).
     derivatives_func : callable, optional
         ``derivatives_func(u1, u2) -> (x1, x2)``; otherwise finite differences.
+    second_derivatives_func : callable, optional
+        ``second_derivatives_func(u1, u2) -> (x11, x12, x22)``; otherwise
+        finite differences.
+
+    The class method ``from_formulas`` builds one from three formulas (exact
+    derivatives, no Python needed: the form scene files use).
 
     Contour, hidden lines and lines of curvature are computed numerically.
 
@@ -105,11 +111,51 @@ class ParametricSurface(Surface):
     derivatives_func: Callable[..., tuple[np.ndarray, np.ndarray]] | None = attrs.field(
         default=None, kw_only=True, validator=_callable("ParametricSurface")
     )
+    second_derivatives_func: Callable[..., tuple[np.ndarray, np.ndarray, np.ndarray]] | None = (
+        attrs.field(default=None, kw_only=True, validator=_callable("ParametricSurface"))
+    )
+
+    @classmethod
+    def from_formulas(
+        cls,
+        x: str,
+        y: str,
+        z: str,
+        u: tuple[Any, Any],
+        v: tuple[Any, Any],
+        *,
+        constants: Mapping[str, float] | None = None,
+        periodic: Any = (False, False),
+        poles: Any = False,
+    ) -> ParametricSurface:
+        """The surface ``(x, y, z)(u, v)`` of three formulas
+        (:mod:`lgraph.formula`: never evaluated as Python), with exact first
+        and second derivatives; ``u`` and ``v`` are the parameter ranges,
+        numbers or formulas of ``constants`` (``"2*pi"``).
+
+        >>> s = ParametricSurface.from_formulas(
+        ...     "(1 + v/2*cos(u/2)) * cos(u)", "(1 + v/2*cos(u/2)) * sin(u)", "v/2*sin(u/2)",
+        ...     (0, "2*pi"), (-0.5, 0.5))
+        >>> s.point(0.0, 0.5).tolist()
+        [1.25, 0.0, 0.0]
+        """
+        from ..formula_maps import FormulaMap, constant_range, constants_dict
+
+        texts, uv, c = (x, y, z), ("u", "v"), constants_dict(constants)
+        return cls(
+            FormulaMap(texts, uv, c),
+            constant_range(u, c, "ParametricSurface.from_formulas: u"),
+            constant_range(v, c, "ParametricSurface.from_formulas: v"),
+            periodic=periodic,
+            poles=poles,
+            derivatives_func=FormulaMap(texts, uv, c, order=1),
+            second_derivatives_func=FormulaMap(texts, uv, c, order=2),
+        )
 
     def __attrs_post_init__(self) -> None:
         if self.func is None:
             raise TypeError("ParametricSurface: func must be callable, got NoneType")
-        if self.derivatives_func is not None:
+        if self.derivatives_func is not None or self.second_derivatives_func is not None:
             self._probe_derivatives()
         u1 = np.array([self.u1_range[0], sum(self.u1_range) / 2])
         u2 = np.array([self.u2_range[0], sum(self.u2_range) / 2])
@@ -126,19 +172,25 @@ class ParametricSurface(Surface):
     def _probe_derivatives(self) -> None:
         u1 = np.array([self.u1_range[0], sum(self.u1_range) / 2])
         u2 = np.array([self.u2_range[0], sum(self.u2_range) / 2])
-        try:
-            x1, x2 = self.derivatives_func(u1, u2)  # type: ignore[misc]
-            shapes = [np.asarray(x, dtype=float).shape for x in (x1, x2)]
-        except Exception as exc:  # noqa: BLE001 - report any failure of user code
-            raise ValueError(
-                "ParametricSurface: derivatives_func(u1, u2) must return two arrays "
-                f"(x1, x2) of shape broadcast(u1, u2).shape + (3,); it failed: {exc!r}"
-            ) from exc
-        if shapes != [(2, 3), (2, 3)]:
-            raise ValueError(
-                "ParametricSurface: derivatives_func must map arrays of shape (2,) to two "
-                f"arrays of shape (2, 3), got shapes {shapes}"
-            )
+        probes = (("derivatives_func", "two", "(x1, x2)", 2),
+                  ("second_derivatives_func", "three", "(x11, x12, x22)", 3))  # fmt: skip
+        for name, count, what, n in probes:
+            func = getattr(self, name)
+            if func is None:
+                continue
+            try:
+                parts = func(u1, u2)
+                shapes = [np.asarray(x, dtype=float).shape for x in parts]
+            except Exception as exc:  # noqa: BLE001 - report any failure of user code
+                raise ValueError(
+                    f"ParametricSurface: {name}(u1, u2) must return {count} arrays {what} "
+                    f"of shape broadcast(u1, u2).shape + (3,); it failed: {exc!r}"
+                ) from exc
+            if shapes != [(2, 3)] * n:
+                raise ValueError(
+                    f"ParametricSurface: {name} must map arrays of shape (2,) to {count} "
+                    f"arrays of shape (2, 3), got shapes {shapes}"
+                )
 
     @property
     def domain(self) -> Domain:
@@ -155,8 +207,12 @@ class ParametricSurface(Surface):
         x1, x2 = self.derivatives_func(u1, u2)
         return np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
 
-
-#: largest length of a quartic surface: its equation's fourth powers must stay finite
+    def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if self.second_derivatives_func is None:
+            return super().second_derivatives(u1, u2)
+        u1, u2 = _uv(u1, u2)
+        x11, x12, x22 = self.second_derivatives_func(u1, u2)
+        return tuple(np.asarray(x, dtype=float) for x in (x11, x12, x22))  # type: ignore[return-value]
 
 
 #: largest length of a quartic surface: its equation's fourth powers must stay finite

@@ -23,7 +23,7 @@ ValueError: named_profile: name must be one of 'catenoid', 'circle', 'egg', ... 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import attrs
@@ -71,6 +71,28 @@ class Profile:
     def _check_func(self, _a: Any, v: Any) -> None:
         if not callable(v):
             raise TypeError(f"Profile: func must be callable, got {type(v).__name__}")
+
+    @classmethod
+    def from_formulas(
+        cls, rho: str, z: str, t: tuple[Any, Any], *, constants: Mapping[str, float] | None = None
+    ) -> Profile:
+        """The profile ``t -> (rho, z)`` of two formulas (:mod:`lgraph.formula`)
+        over the range ``t``, with exact derivatives.
+
+        >>> p = Profile.from_formulas("1 + 0.3*cos(2*t)", "sin(t)", ("-pi/2", "pi/2"))
+        >>> [round(float(a), 12) for a in p(0.0)]
+        [1.3, 0.0]
+        """
+        from ..formula_maps import FormulaMap, constant_range, constants_dict
+
+        texts, c = (rho, z), constants_dict(constants)
+        return cls(
+            FormulaMap(texts, ("t",), c, stack=False),
+            FormulaMap(texts, ("t",), c, order=1, stack=False),
+            FormulaMap(texts, ("t",), c, order=2, stack=False),
+            t_range=constant_range(t, c, "Profile.from_formulas: t"),
+            name="formula",
+        )
 
     def __call__(self, t: Any) -> Any:
         return self.func(t)

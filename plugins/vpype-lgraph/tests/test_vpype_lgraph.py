@@ -174,3 +174,21 @@ def test_command_line(scene: Path, tmp_path: Path) -> None:
     assert [back.layers[k].property("vp_name") for k in sorted(back.layers)] == [
         "1 curvature", "2 contour", "3 u1", "4 u2"
     ]  # fmt: skip
+
+
+def test_a_scene_file_with_formulas(tmp_path: Path) -> None:
+    """Surfaces and curves written as formulas (no Python) reach vpype as
+    lgraph draws them."""
+    path = tmp_path / "moebius.toml"
+    path.write_text(
+        '[projector]\nkind = "parallel"\nazimuth = 25\nelevation = 40\n'
+        "[constants]\nw = 0.5\n"
+        '[[object]]\nsurface = "parametric"\n'
+        'x = "(1 + v*cos(u/2)) * cos(u)"\ny = "(1 + v*cos(u/2)) * sin(u)"\nz = "v*sin(u/2)"\n'
+        'u = [0, "2*pi"]\nv = ["-w", "w"]\n'
+        'families = [{ name = "parameter_lines", n1 = 12, n2 = 4 }]\n'
+        '[[curve]]\nx = "cos(t)"\ny = "sin(t)"\nz = "0"\nt = [0, "2*pi"]\nclosed = true\n'
+    )
+    doc = vpype_cli.execute(f"lgraph --no-dashes '{path}'")
+    layers = drawing_layers(lgraph_drawing(path, hidden=False))
+    assert sum(map(len, doc.layers.values())) == sum(len(layer.runs) for layer in layers) > 16
