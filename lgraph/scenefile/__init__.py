@@ -215,6 +215,21 @@ def _toml() -> Any:
     return tomllib
 
 
+def _readable(text: str, limit: int) -> str:
+    r"""``text`` for a message: control and other unprintable characters
+    escaped (a terminal shows them, it does not obey them), cut to ``limit``
+    characters.
+
+    >>> _readable("red" + chr(27) + "[31m" + "x" * 50, 20)
+    'red\\x1b[31mxxxx... (61 characters)'
+    """
+    if not text.isprintable():
+        text = "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+    if len(text) > limit:
+        text = f"{text[: limit - 5]}... ({len(text)} characters)"
+    return text
+
+
 def load_scene_file(
     path: str | os.PathLike[str],
     output: str | os.PathLike[str] | Sequence[str | os.PathLike[str]] | None = None,
@@ -255,7 +270,7 @@ def load_scene_file(
         raise ValueError("load_scene_file: output: expected one or more files, got none")
     suffixes = [Path(o).suffix if o is not None else ".pdf" for o in outputs]
     tomllib = _toml()
-    shown = str(path)
+    shown = _readable(str(path), 300)
     try:
         text = Path(path).read_text(encoding="utf-8-sig")  # a BOM is fine
     except (OSError, UnicodeDecodeError) as exc:
@@ -294,7 +309,8 @@ def load_scene_file(
         errors = []
         for e in [exc, *exc.more]:
             line = locator.line_of(e.key)
-            errors.append((line, _key_text(e.key), " ".join(e.message.split())))
+            key = _readable(_key_text(e.key), 80)
+            errors.append((line, key, _readable(" ".join(e.message.split()), 300)))
         errors.sort(key=lambda e: (e[0] is None, e[0] or 0))
         lines = []
         for line, key, message in errors:

@@ -64,7 +64,7 @@ def _object(
     from ..plugins import get_surface
 
     name = obj.get("surface")
-    if name in _FORMULA_SURFACES:  # formulas: their keys in the object's table
+    if isinstance(name, str) and name in _FORMULA_SURFACES:  # formulas: keys in the table
         keys, build = _FORMULA_SURFACES[name]
         check(_only, key, obj, tuple(k for k in _OBJECT if k != "params") + keys)
         surface = build(key, obj)

@@ -68,7 +68,10 @@ def _cosine(n: np.ndarray, p: np.ndarray | None, projector: Projector) -> np.nda
 
 def _analytic_second_derivatives(surface: Surface) -> bool:
     """Whether the surface's class overrides the numeric default of
-    ``second_derivatives`` (defined by the base class: the last of the MRO)."""
+    ``second_derivatives`` (defined by the base class: the last of the MRO),
+    and, for a :class:`~lgraph.ParametricSurface`, was given them."""
+    if getattr(surface, "second_derivatives_func", True) is None:
+        return False
     owners = [c for c in type(surface).__mro__ if "second_derivatives" in vars(c)]
     return len(owners) > 1
 
