@@ -298,3 +298,37 @@ def test_a_numeric_surface_counts_zero_sheets_for_rays_that_miss_it():
     d = np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]])
     n = s.hit_count(o, d, np.full(2, np.inf), np.zeros(2, dtype=np.int8))
     assert np.asarray(n).tolist() == [0, 0]
+
+
+@pytest.mark.parametrize(
+    "kw, words",
+    [
+        ({"periodic": ("twisted", False)}, "ParametricSurface: periodic[0] must be True or False"),
+        ({"periodic": ("no", False)}, "periodic[0] must be True or False, got 'no'"),
+        ({"periodic": "yes"}, "periodic must be a bool or a pair (u1, u2) of bools"),
+        ({"poles": ("no", True)}, "poles[0] must be a bool or a pair (low, high) of bools"),
+        ({"poles": ((True, 2), False)}, "poles[0][1] must be True or False, got 2"),
+    ],
+)
+def test_periodic_and_poles_take_only_bools(kw, words):
+    """``periodic=("no", False)`` was (True, False): any truthy value counted
+    (issue #25)."""
+    with pytest.raises(ValueError) as info:
+        lg.ParametricSurface(moebius, (0, 1), (0, 1), **kw)
+    assert words in str(info.value)
+    assert lg.Domain((0, 1), (0, 1), periodic=(1, 0)).periodic == (True, False)
+
+
+def test_a_point_written_for_numbers_only_is_explained():
+    """A ``point`` written with ``math`` works on numbers, not arrays: the
+    error says so and how to fix it (issue #25), not numpy's raw TypeError."""
+    import math
+
+    def scalar(u, v):
+        return (math.cos(u), math.sin(u), v)
+
+    with pytest.raises(ValueError, match=r"works on single numbers only.*np\.vectorize"):
+        lg.ParametricSurface(scalar, (0, 1), (0, 1))
+    wrapped = np.vectorize(lambda u, v: np.array(scalar(u, v)), signature="(),()->(3)")
+    s = lg.ParametricSurface(wrapped, (0, 1), (0, 1))
+    np.testing.assert_allclose(s.point(0.0, 0.5), [1.0, 0.0, 0.5])

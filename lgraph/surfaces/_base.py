@@ -33,14 +33,32 @@ _W1 = (1 / 12, -2 / 3, 2 / 3, -1 / 12)
 _W2 = (-1 / 12, 4 / 3, 4 / 3, -1 / 12)
 
 
-def _bool_pair(value: Any) -> tuple[bool, bool]:
+def _flag(value: Any, what: str) -> bool:
+    """A strict bool (``True``/``False``, numpy's or 0/1): ``"no"`` or
+    ``"twisted"`` is not silently true."""
+    if isinstance(value, (bool, np.bool_)) or (
+        isinstance(value, (int, np.integer)) and value in (0, 1)
+    ):
+        return bool(value)
+    raise ValueError(f"{what} must be True or False, got {value!r}")
+
+
+def _bool_pair(value: Any, what: str = "periodic", pair: str = "(u1, u2)") -> tuple[bool, bool]:
+    """One flag for both parameters (or ends) or a pair of flags."""
     if isinstance(value, (bool, np.bool_)):
         return (bool(value), bool(value))
-    a, b = value
-    return (bool(a), bool(b))
+    try:
+        if isinstance(value, str):  # "no" is not a pair ("n", "o")
+            raise TypeError
+        a, b = value
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"{what} must be a bool or a pair {pair} of bools, got {value!r}"
+        ) from None
+    return (_flag(a, f"{what}[0]"), _flag(b, f"{what}[1]"))
 
 
-def _pole_pairs(value: Any) -> tuple[tuple[bool, bool], tuple[bool, bool]]:
+def _pole_pairs(value: Any, what: str = "poles") -> tuple[tuple[bool, bool], tuple[bool, bool]]:
     """Poles per parameter end: ``True`` (all four ends), ``(p1, p2)`` (both
     ends of ``u1`` / ``u2``) or ``((lo1, hi1), (lo2, hi2))``, mixed freely."""
     if isinstance(value, (bool, np.bool_)):
@@ -49,10 +67,23 @@ def _pole_pairs(value: Any) -> tuple[tuple[bool, bool], tuple[bool, bool]]:
         a, b = value
     except (TypeError, ValueError):
         raise ValueError(
-            "poles must be a bool, a pair (u1, u2) of bools, or a pair of pairs "
+            f"{what} must be a bool, a pair (u1, u2) of bools, or a pair of pairs "
             f"((u1 low, u1 high), (u2 low, u2 high)), got {value!r}"
         ) from None
-    return (_bool_pair(a), _bool_pair(b))
+    ends = "(low, high)"
+    return (_bool_pair(a, f"{what}[0]", ends), _bool_pair(b, f"{what}[1]", ends))
+
+
+def domain_flags(owner: str) -> tuple[Any, Any]:
+    """attrs fields ``periodic`` and ``poles`` whose errors name ``owner``."""
+    periodic = attrs.field(
+        default=(False, False), converter=lambda v: _bool_pair(v, f"{owner}: periodic")
+    )
+    poles = attrs.field(default=False, converter=lambda v: _pole_pairs(v, f"{owner}: poles"))
+    return periodic, poles
+
+
+_DOMAIN_FLAGS = domain_flags("Domain")
 
 
 @attrs.frozen
@@ -79,10 +110,8 @@ class Domain:
 
     u1: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u1", v))
     u2: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u2", v))
-    periodic: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
-    poles: tuple[tuple[bool, bool], tuple[bool, bool]] = attrs.field(
-        default=False, converter=_pole_pairs
-    )
+    periodic: tuple[bool, bool] = _DOMAIN_FLAGS[0]
+    poles: tuple[tuple[bool, bool], tuple[bool, bool]] = _DOMAIN_FLAGS[1]
 
     def range(self, i: int) -> tuple[float, float]:
         return self.u1 if i == 0 else self.u2

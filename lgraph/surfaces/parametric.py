@@ -23,7 +23,7 @@ import attrs
 import numpy as np
 
 from .._validate import as_number, at_most, finite_positive, interval
-from ._base import Domain, Surface, _bool_pair, _pole_pairs
+from ._base import Domain, Surface, domain_flags
 
 __all__ = ["ParametricSurface"]
 
@@ -47,8 +47,19 @@ def _stack(*c: np.ndarray) -> np.ndarray:
     return out
 
 
+def _takes_scalars(func: Callable[..., Any], u1: float, u2: float) -> bool:
+    """Whether ``func`` works on two numbers (and so failed on arrays only)."""
+    try:
+        return np.shape(np.asarray(func(float(u1), float(u2)), dtype=float)) == (3,)
+    except Exception:  # noqa: BLE001 - user code, any failure means no
+        return False
+
+
 def _uv(u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
     return np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+
+
+_FLAGS = domain_flags("ParametricSurface")
 
 
 @attrs.frozen(eq=False)
@@ -104,10 +115,8 @@ class ParametricSurface(Surface):
     u2_range: tuple[float, float] = attrs.field(
         converter=lambda v: interval("ParametricSurface", "u2_range", v)
     )
-    periodic: tuple[bool, bool] = attrs.field(default=(False, False), converter=_bool_pair)
-    poles: tuple[tuple[bool, bool], tuple[bool, bool]] = attrs.field(
-        default=False, converter=_pole_pairs
-    )
+    periodic: tuple[bool, bool] = _FLAGS[0]
+    poles: tuple[tuple[bool, bool], tuple[bool, bool]] = _FLAGS[1]
     derivatives_func: Callable[..., tuple[np.ndarray, np.ndarray]] | None = attrs.field(
         default=None, kw_only=True, validator=_callable("ParametricSurface")
     )
@@ -162,6 +171,13 @@ class ParametricSurface(Surface):
         try:
             probe = np.asarray(self.func(u1, u2), dtype=float)
         except Exception as exc:  # noqa: BLE001 - report any failure of user code
+            if _takes_scalars(self.func, u1[1], u2[1]):
+                raise ValueError(
+                    "ParametricSurface: func works on single numbers only, but it is called "
+                    "with arrays of many parameters at once: write it with numpy (np.cos, not "
+                    "math.cos; np.where, not if), or wrap it (slow): np.vectorize(lambda u, v: "
+                    "np.array(func(u, v)), signature='(),()->(3)')"
+                ) from exc
             raise ValueError(f"ParametricSurface: func(u1, u2) failed: {exc!r}") from exc
         if probe.shape != (2, 3):
             raise ValueError(
