@@ -23,6 +23,23 @@ True
 Traceback (most recent call last):
 ...
 ValueError: Label '$\\foo$': unknown TeX in the text: Unknown symbol: \foo
+
+Label text is untrusted input (scene files): before anything parses it,
+:func:`check_text` refuses text longer than :data:`MAX_LABEL_LENGTH`,
+control characters, groups nested deeper than :data:`MAX_LABEL_DEPTH` and
+the TeX commands that reach files or the shell, define commands or change
+how TeX reads its input (:func:`check_tex`; the TikZ backend passes label
+text to TeX as it is).  Messages quote the text with :func:`quote`: escaped
+and cut to a readable length.
+
+>>> check_text("Label", "bell\x07")  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+ValueError: Label: text must not contain control characters (...), got '\x07' at position 4 ...
+>>> check_text("Label", "$\\input{/etc/passwd}$")  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+ValueError: Label: text must not use the TeX command \input (it reads or writes files), ...
 """
 
 from __future__ import annotations
@@ -34,7 +51,20 @@ from typing import Any
 import attrs
 import numpy as np
 
-__all__ = ["TextShape", "check_text", "text_shape", "has_math", "EXTRA_HINT"]
+from ._tex_check import QUOTE_LENGTH, _check_size, check_tex, quote  # noqa: F401 - re-exported
+from ._tolerance import MAX_LABEL_DEPTH, MAX_LABEL_LENGTH
+
+__all__ = [
+    "TextShape",
+    "check_text",
+    "check_tex",
+    "quote",
+    "text_shape",
+    "has_math",
+    "EXTRA_HINT",
+    "MAX_LABEL_LENGTH",
+    "MAX_LABEL_DEPTH",
+]
 
 #: how to get the optional dependency
 EXTRA_HINT = "pip install 'lgraph[labels]' (or pip install matplotlib)"
@@ -48,6 +78,10 @@ FALLBACK_FONT = "Times-Roman"
 MOVETO, LINETO, CURVE3, CURVE4, CLOSEPOLY = 1, 2, 3, 4, 79
 
 _DOLLAR = re.compile(r"(?<!\\)\$")
+
+
+class _TypesetError(ValueError):
+    """mathtext failed for a reason other than the text's TeX (its recursion or memory)."""
 
 
 def has_math(text: str) -> bool:
@@ -77,27 +111,38 @@ def _mpl_available() -> bool:
 def check_text(owner: str, text: Any) -> str:
     """Validate label text; raises ValueError naming the label and the problem.
 
-    Checks: a non-empty string, balanced ``$``, and (when matplotlib is
-    installed) that mathtext knows every TeX command.
+    Checks, in this order and each before anything parses the text: a
+    string, at most :data:`MAX_LABEL_LENGTH` characters, no control
+    characters (C0, DEL, C1, lone surrogates, U+FFFE, U+FFFF: a label is one
+    line) and no TeX that reaches files or the shell (both :func:`check_tex`),
+    not empty, groups nested at most :data:`MAX_LABEL_DEPTH` deep,
+    balanced ``$``; then (when matplotlib is installed) that mathtext knows
+    every TeX command.
     """
     if not isinstance(text, str):
         raise TypeError(f"{owner}: text must be a string, got {type(text).__name__}")
+    if len(text) > MAX_LABEL_LENGTH:
+        _check_size(owner, text)
+    check_tex(owner, text)
     if not text.strip():
-        raise ValueError(f"{owner}: text must not be empty, got {text!r}")
+        raise ValueError(f"{owner}: text must not be empty, got {quote(text)}")
+    _check_size(owner, text)
     if len(_DOLLAR.findall(text)) % 2:
         raise ValueError(
-            f"{owner} {text!r}: unbalanced $ (mathematics goes between a pair of $...$)"
+            f"{owner} {quote(text)}: unbalanced $ (mathematics goes between a pair of $...$)"
         )
     if has_math(text) and _mpl_available():
         try:
             _outline(text, 10.0)
+        except _TypesetError as exc:
+            raise ValueError(f"{owner}: {str(exc).partition(': ')[2]}") from None
         except ValueError as exc:
             lines = [ln.strip() for ln in str(exc).splitlines() if ln.strip()]
             why = next((ln for ln in lines if "Exception:" in ln or "Error" in ln), lines[-1:])
             why = why if isinstance(why, str) else (why[0] if why else "cannot parse")
             why = re.sub(r"^\w*(Exception|Error):\s*", "", why)
             why = re.sub(r",\s*found .*$", "", why)
-            raise ValueError(f"{owner} {text!r}: unknown TeX in the text: {why}") from None
+            raise ValueError(f"{owner} {quote(text)}: unknown TeX in the text: {why}") from None
     return text
 
 
@@ -123,8 +168,27 @@ def _outline(text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
     import matplotlib as mpl
     from matplotlib.font_manager import FontProperties
 
-    with mpl.rc_context({"mathtext.fontset": "cm"}):
-        tp = textpath.TextPath((0, 0), text, size=size, prop=FontProperties(family=_FAMILY))
+    _check_size("Label", text)  # also for text that did not come through check_text
+    try:
+        with mpl.rc_context({"mathtext.fontset": "cm"}):
+            prop = FontProperties(family=_FAMILY)  # its math font is the fontset here
+            try:
+                tp = textpath.TextPath((0, 0), text, size=size, prop=prop)
+            except AttributeError:
+                # matplotlib fails on text that draws nothing (a zero-width
+                # space, a soft hyphen): an empty outline
+                if len(textpath.text_to_path.get_text_path(prop, text, ismath=has_math(text))[0]):
+                    raise
+                return np.empty(0, np.int64), np.empty((0, 2))
+    except RecursionError:
+        raise _TypesetError(
+            f"Label: text nests too deeply for mathtext to typeset (it ran out of recursion; "
+            f"groups count, and so do chains of accents): {quote(text)}"
+        ) from None
+    except MemoryError:
+        raise _TypesetError(
+            f"Label: text needs more memory than mathtext has to typeset it: {quote(text)}"
+        ) from None
     codes = np.asarray(tp.codes, dtype=np.int64)
     vertices = np.asarray(tp.vertices, dtype=float)
     return codes, vertices
@@ -182,6 +246,8 @@ def cubic_segments(
     point before each command.
     """
     kind, end = segments(codes)
+    if not len(kind):  # text that draws nothing
+        return kind, np.empty((0, 3, 2)), np.empty((0, 2))
     v = np.asarray(vertices, float)
     pts = np.repeat(v[end][:, None, :], 3, axis=1)
     prev = np.where(end > 0, end - 1, 0)

@@ -152,9 +152,45 @@ MAX_MARCH_STEPS = 200_000
 #: Most frames of an animation or orbit.
 MAX_FRAMES = 100_000
 
+# -- budgets of line families (checked by lgraph._budget) ----------------------
+#: Most levels of one level-line family (``LevelLines(n=...)`` or the length
+#: of its ``values``; a figure has a few dozen).
+MAX_LEVELS = 1000
+#: Largest tracing grid (nodes per parameter) of ``LevelLines`` and
+#: ``ParabolicLines``: marching squares hold about 250 bytes per node, so
+#: ``1025`` needs about 270 MB (``4097`` would need 4 GB).
+MAX_LEVEL_GRID = 1025
+#: Most grid cells one level-line family marches: levels times
+#: ``(grid - 1)^2`` (about 15 s; 1000 levels on the default grid of 193 fit).
+MAX_LEVEL_CELLS = 40_000_000
+#: Grid nodes of a level-line family's function evaluated at once (rows of
+#: the grid in chunks: the working memory of the function stays bounded).
+LEVEL_CHUNK_NODES = 65_536
+#: Most numerically integrated lines per family (``n1``, ``n2``) of
+#: ``LinesOfCurvature`` and ``AsymptoticLines`` (complete lines, the
+#: default spacing: about 10 s for 500 + 500; closed forms and parameter
+#: lines allow ``MAX_CURVES``).
+MAX_FIELD_LINES = 500
+#: ... with ``spacing="even"`` (its cost grows faster than the square of the
+#: count: about 15 s for 100 + 100).
+MAX_EVEN_FIELD_LINES = 100
+
 # -- animation frames (lgraph.frame_geometry) -----------------------------------
 #: ``render_options={"tolerance": "pixel"}``: raster frames are sampled so that
 #: every chord stays within this many output pixels of its curve (instead of
 #: the render's default, ``CHORD_TOLERANCE`` of the figure's diagonal: 0.06 px
 #: in a 480 px frame).
 PIXEL_TOLERANCE = 0.25
+
+#: The most characters of one label's text, checked before anything reads it
+#: (a label is a few words or a formula; a megabyte kept mathtext busy for 20 s
+#: and then ran out of memory).
+MAX_LABEL_LENGTH = 1000
+
+#: The deepest nesting of groups in a label's text: braces ``{...}`` (not
+#: ``\{``), ``\left...\right`` and the optional argument of ``\sqrt[...]``.
+#: mathtext recurses about 45 Python frames per level (``\hat{``, ``\sqrt{``,
+#: ``\frac{``), so 10 levels need about 520 of Python's default 1000 and leave
+#: room for the caller; a RecursionError that still happens (unbraced chains
+#: of accents) becomes a ValueError too.
+MAX_LABEL_DEPTH = 10

@@ -87,7 +87,7 @@ def test_random_tiny_spheres_in_front_of_a_line(seed):
 def test_sample_only_testing_misses_the_piece(monkeypatch):
     # the mutation check: without the net crossings the same scene draws the
     # whole line visible, so the test above depends on them
-    monkeypatch.setattr(render_pkg, "seed_net_crossings", lambda s, vis: 0)
+    monkeypatch.setattr(render_pkg, "seed_net_crossings", lambda s, vis, near=None: 0)
     dr = _line_scene([(0.11, 0.0, 1.0, 0.05)]).render(
         lg.ParallelProjector(direction=(0, 0, 1)), hidden_lines=True
     )

@@ -16,13 +16,13 @@ from __future__ import annotations
 
 import math
 from typing import Any
-from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
 from .._text import CLOSEPOLY, CURVE4, FALLBACK_FONT, LINETO, MOVETO, cubic_segments, polygons
 from .._text import text_shape as _shape
 from ._common import fmt_num, hex_color
+from .svg import xml_attr, xml_text
 
 __all__ = ["path_ops", "pdf_labels", "svg_labels", "png_labels"]
 
@@ -90,14 +90,14 @@ def svg_labels(drawing: Any, height: float, precision: int) -> list[str]:
         shape = _shape(lab.text, lab.size)
         color = hex_color(lab.style.color)
         head = (
-            f'<g class="label" data-text={quoteattr(lab.text)} '
+            f'<g class="label" data-text={xml_attr(lab.text)} '
             f'data-visible="{"true" if lab.visible else "false"}">'
         )
         if shape.string is not None:
             x, y = fmt_num(origin[0]), fmt_num(height - origin[1])
             body = (
                 f'<text x="{x}" y="{y}" font-family="Times New Roman, Times, serif" '
-                f'font-size="{fmt_num(lab.size)}" fill="{color}">{escape(shape.string)}</text>'
+                f'font-size="{fmt_num(lab.size)}" fill="{color}">{xml_text(shape.string)}</text>'
             )
         else:
             d = path_ops(shape, origin, "{},{} ", "M", "L", "C", "Z", precision, height)

@@ -170,6 +170,11 @@ class LinesOfCurvature(Family):
     close to another line of their family (``spacing="even"``, evenly spaced
     streamlines).  Closed forms ignore ``spacing``.
 
+    ``n1`` and ``n2`` are at most ``MAX_CURVES``; lines that are integrated
+    at most ``MAX_FIELD_LINES`` (500) each, ``MAX_EVEN_FIELD_LINES`` (100)
+    with ``spacing="even"``, checked before the work when the surface is
+    known (docs page "Limits").
+
     >>> LinesOfCurvature(3, 3, spacing="dense")
     Traceback (most recent call last):
     ...

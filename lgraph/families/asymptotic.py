@@ -31,7 +31,10 @@ class AsymptoticLines(Family):
     Surfaces with closed forms supply ``asymptotic_lines(n1, n2)`` (the rulings
     of the hyperboloid of one sheet and the hyperbolic paraboloid); others are
     integrated numerically (:mod:`!lgraph.families.fieldlines`): complete lines by
-    default, or trimmed to even spacing with ``spacing="even"``.
+    default, or trimmed to even spacing with ``spacing="even"``.  Integrated
+    lines are budgeted like those of :class:`~lgraph.LinesOfCurvature`: at
+    most ``MAX_FIELD_LINES`` (500) per family, ``MAX_EVEN_FIELD_LINES`` (100)
+    with ``spacing="even"``.
 
     >>> AsymptoticLines(-1, 3)
     Traceback (most recent call last):

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import attrs
 import numpy as np
 
+from .. import _tolerance as tol
 from .._budget import check_geodesic
 from .._validate import as_number, finite_positive
 from ..curves import CurveBatch, CurveOnSurface
@@ -113,6 +114,8 @@ class Geodesic(Family):
     """One geodesic of the node's surface (family ``"geodesic"``): from the
     parameters ``uv0`` in the parameter direction ``direction = (du1, du2)``,
     ``length`` long (3-D arc length); ``both_ways`` also runs it backward.
+    The length run in all (twice ``length`` both ways) is at most
+    ``MAX_GEODESIC_TURNS`` times the surface's size, checked when drawn.
 
     >>> Geodesic((0, 0), (1, 0), length=0)
     Traceback (most recent call last):
@@ -132,7 +135,13 @@ class Geodesic(Family):
     both_ways: bool = attrs.field(default=False, kw_only=True)
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
-        check_geodesic("Geodesic", surface, self.uv0, self.direction, self.length)
+        length = check_geodesic("Geodesic", surface, self.uv0, self.direction, self.length)
+        limit = tol.MAX_GEODESIC_TURNS * surface.size
+        if self.both_ways and 2 * length > limit:  # both halves integrated: the work doubles
+            raise ValueError(
+                f"Geodesic: length {length:g} run both ways ({2 * length:g} in all) exceeds the "
+                f"limit of {tol.MAX_GEODESIC_TURNS} times the surface's size ({limit:g})"
+            )
         fwd, t1 = _geodesic_solution(surface, self.uv0, self.direction, self.length)
         t0 = 0.0
         bwd = None

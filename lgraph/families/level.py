@@ -31,6 +31,8 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import attrs
 import numpy as np
 
+from .._budget import check_levels
+from .._tolerance import LEVEL_CHUNK_NODES, MAX_LEVEL_GRID, MAX_LEVELS
 from .._validate import count, vector3
 from . import Family, register_family
 
@@ -79,6 +81,11 @@ def _values(value: Any) -> tuple[float, ...] | None:
         raise ValueError(
             f"LevelLines: values must be a non-empty list of finite numbers, got {value!r}"
         )
+    if len(v) > MAX_LEVELS:
+        raise ValueError(
+            f"LevelLines: values must be a list of at most {MAX_LEVELS} numbers, "
+            f"got {len(v)} numbers"
+        )
     return tuple(float(x) for x in v)
 
 
@@ -122,11 +129,11 @@ class LevelLines(Family):
     n : int
         Number of levels evenly spread over the range the function takes on
         the drawn patch (``n`` values splitting it into ``n + 1`` equal parts);
-        ignored when ``values`` is given.
+        ignored when ``values`` is given.  At most ``MAX_LEVELS`` (1000).
     direction : 3 numbers
         The planes are perpendicular to it (height ``x . direction / |direction|``).
     values : list of float, optional
-        Explicit levels.
+        Explicit levels (at most ``MAX_LEVELS``).
     function : callable or str, optional
         A scalar function instead of the height: of the point
         (``function(xyz (..., 3)) -> (...)``, the default) or, with
@@ -135,17 +142,24 @@ class LevelLines(Family):
     argument : "point" or "uv"
         What ``function`` takes.
     grid : int
-        Parameter grid nodes per direction for tracing (finer finds smaller loops).
+        Parameter grid nodes per direction for tracing (finer finds smaller
+        loops): 9 to ``MAX_LEVEL_GRID`` (1025), and the levels times
+        ``(grid - 1)**2`` at most ``MAX_LEVEL_CELLS`` (4e7; docs page "Limits").
 
     >>> LevelLines(3, direction=(0, 0, 0))
     Traceback (most recent call last):
     ...
     ValueError: LevelLines: direction must be a non-zero vector, got (0, 0, 0)
+    >>> LevelLines(1000, grid=1025)
+    Traceback (most recent call last):
+    ...
+    ValueError: LevelLines: grid must be at most 201 with 1000 levels (levels x (grid - 1)^2
+    at most 40000000 cells), got 1025
     """
 
     view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.families.cache)
 
-    n: int = attrs.field(default=9, validator=count("LevelLines"))
+    n: int = attrs.field(default=9, validator=count("LevelLines", 0, MAX_LEVELS))
     direction: np.ndarray = attrs.field(
         default=(0.0, 0.0, 1.0),
         converter=lambda v: vector3("LevelLines", "direction", v, nonzero=True),
@@ -156,7 +170,16 @@ class LevelLines(Family):
         default=None, converter=_function, kw_only=True, eq=False
     )
     argument: str = attrs.field(default="point", kw_only=True)
-    grid: int = attrs.field(default=193, validator=count("LevelLines", 9, 4097), kw_only=True)
+    grid: int = attrs.field(
+        default=193, validator=count("LevelLines", 9, MAX_LEVEL_GRID), kw_only=True
+    )
+
+    def __attrs_post_init__(self) -> None:
+        # the work, known from the parameters: levels x grid cells (lgraph._budget)
+        if self.values is None:
+            check_levels("LevelLines", self.n, self.grid, name="n", min_grid=9)
+        else:
+            check_levels("LevelLines", len(self.values), self.grid, min_grid=9)
 
     @argument.validator
     def _check_argument(self, _a: Any, v: Any) -> None:
@@ -214,13 +237,20 @@ def level_batches(
     family: str = "level",
 ) -> list[CurveBatch]:
     """Batches (one per value) of the numeric level lines ``f(u1, u2) = value``,
-    projected onto the level to ``LEVEL_FTOL * spread`` when evaluated."""
+    projected onto the level to ``LEVEL_FTOL * spread`` when evaluated.
+
+    The work is budgeted before it starts (``lgraph._budget.check_levels``:
+    ``grid`` at most ``MAX_LEVEL_GRID``, the values times ``(grid - 1)**2`` at
+    most ``MAX_LEVEL_CELLS``); ``f`` is evaluated on the grid in chunks of
+    rows of at most ``LEVEL_CHUNK_NODES`` nodes (one call on grids up to 256)."""
     from ..surfaces._numeric_contour import project_to_zero, zero_set_batch
     from ..surfaces._zero_set import grid_parameters, zero_set
 
-    on_grid = f(*grid_parameters(surface, grid))  # once for all values
+    values = np.atleast_1d(np.asarray(values, float)).ravel()
+    grid = check_levels("level_batches", len(values), grid)
+    on_grid = _on_grid(f, *grid_parameters(surface, grid))  # once for all values
     out = []
-    for value in np.atleast_1d(np.asarray(values, float)).tolist():
+    for value in values.tolist():
 
         def g(u1: Any, u2: Any, value: float = value) -> np.ndarray:
             return f(u1, u2) - value
@@ -234,6 +264,21 @@ def level_batches(
 
         out.append(zero_set_batch(surface, curves, adjust, family))
     return out
+
+
+def _on_grid(f: Callable[[Any, Any], np.ndarray], U1: np.ndarray, U2: np.ndarray) -> np.ndarray:
+    """``f(U1, U2)`` on a grid, in chunks of rows of at most ``LEVEL_CHUNK_NODES``
+    nodes: the function's working memory (derivatives of a surface at every
+    node, say) stays bounded however fine the grid."""
+    rows = max(1, LEVEL_CHUNK_NODES // max(U1.shape[1], 1))
+    if rows >= U1.shape[0]:
+        return np.asarray(f(U1, U2), float)
+    return np.concatenate(
+        [
+            np.asarray(f(U1[i : i + rows], U2[i : i + rows]), float)
+            for i in range(0, U1.shape[0], rows)
+        ]
+    )
 
 
 def _exact_sections(surface: Surface, direction: np.ndarray, values: np.ndarray) -> Any:

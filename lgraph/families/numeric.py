@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from .._budget import check_field_lines
 from .._tolerance import FIELD_DUPLICATE_RTOL, PARAMETER_LINES_RTOL
 from ..curvature import _frame, asymptotic_field, principal_field
 from ..curves import CurveBatch
@@ -209,7 +210,13 @@ def field_line_batches(
 ) -> list[CurveBatch]:
     """Batches of ``n1`` lines of the branch that runs like the ``u1 = const``
     lines at the centre of the domain and ``n2`` of the other (see the module
-    docstring for ``spacing``)."""
+    docstring for ``spacing``).
+
+    Where the lines are integrated, ``n1`` and ``n2`` are budgeted before any
+    work (``lgraph._budget.check_field_lines``: at most
+    ``MAX_FIELD_LINES``, ``MAX_EVEN_FIELD_LINES`` with ``spacing="even"``);
+    parameter lines that are the field's lines are not integrated, so they
+    only have the limit of every family, ``MAX_CURVES``."""
     if spacing not in SPACINGS:
         choices = ", ".join(map(repr, SPACINGS))
         raise ValueError(f"spacing must be one of {choices}, got {spacing!r}")
@@ -219,6 +226,12 @@ def field_line_batches(
     d = surface.domain
     if _parameter_lines_are_field_lines(surface, field):
         return parameter_line_batches(surface, d.lines(0, n1), d.lines(1, n2), family, family)
+    owner = (
+        "LinesOfCurvature" if field is principal_field
+        else "AsymptoticLines" if field is asymptotic_field
+        else "field_line_batches"
+    )  # fmt: skip
+    check_field_lines(owner, n1, n2, spacing)
     stop = field.stop if stop is None else stop
     singular = umbilics(surface) if field is principal_field else np.empty((0, 2))
     c = _center_seed(surface, field, stop)

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import attrs
 import numpy as np
 
+from .._tolerance import MAX_LEVEL_GRID
 from .._validate import count
 from . import Family, parameter_line_batches, register_family
 
@@ -60,11 +61,17 @@ class ParabolicLines(Family):
     """The parabolic lines ``K = 0`` of a surface (family ``"parabolic"``):
     closed form for the torus, the Dupin cyclide and surfaces of revolution,
     numeric (level set of ``K`` on a ``grid x grid`` parameter grid, refined by
-    Newton's method) otherwise."""
+    Newton's method) otherwise; ``grid`` from 9 to ``MAX_LEVEL_GRID`` (1025).
+
+    >>> ParabolicLines(grid=4097)
+    Traceback (most recent call last):
+    ...
+    ValueError: ParabolicLines: grid must be an integer from 9 to 1025, got 4097
+    """
 
     view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.families.cache)
 
-    grid: int = attrs.field(default=193, validator=count("ParabolicLines", 9, 4097))
+    grid: int = attrs.field(default=193, validator=count("ParabolicLines", 9, MAX_LEVEL_GRID))
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
         exact = _closed_form(surface)

@@ -34,7 +34,7 @@ from typing import Any
 import attrs
 import numpy as np
 
-from .._text import check_text
+from .._text import check_text, quote
 from .._validate import _is_real
 from ..style import ANCHORS, Style, _color
 
@@ -43,7 +43,7 @@ __all__ = ["Label", "Point", "ANCHORS"]
 
 def _name(label: Any) -> str:
     text = getattr(label, "text", None)
-    return f"Label {text!r}" if isinstance(text, str) else "Label"
+    return f"Label {quote(text)}" if isinstance(text, str) else "Label"
 
 
 def _point3(owner: str, name: str, value: Any) -> np.ndarray:
@@ -66,7 +66,12 @@ class Label:
     ----------
     text : str
         The text; ``$...$`` encloses TeX mathematics (``"$\\kappa_1$"``,
-        ``"point $P$"``).
+        ``"point $P$"``).  One line of at most ``MAX_LABEL_LENGTH`` (1000)
+        characters, no control characters, groups (``{...}``,
+        ``\\left...\\right``, ``\\sqrt[...]``) nested at most
+        ``MAX_LABEL_DEPTH`` (10) deep, and no TeX command that reaches files
+        or the shell, defines commands or changes how TeX reads text
+        (``lgraph._text.check_tex``: the TikZ backend hands the text to TeX).
     at : 3 numbers
         The anchor point (in the coordinates of the scene it is added to).
     offset : (dx, dy), default (0, 0)

@@ -394,7 +394,9 @@ def _render(
     settled = None if hidden_lines else _self_hidden(s, vis)
     refine(s, abs_tol[0] if views.k == 1 else np.array(abs_tol)[s.view], settled)
     _classify(s, vis)
-    if seed_net_crossings(s, vis):  # a short piece between two samples
+    # a short piece between two samples: chords crossed twice by the net, or
+    # passed closer than the two polylines' tolerances
+    if seed_net_crossings(s, vis, 2 * np.asarray(abs_tol)):
         _classify(s, vis)
     locate_flips(s, vis)
     # hidden runs split where the number of sheets in front changes

@@ -34,12 +34,14 @@ from .sampling import Samples, merge
 if TYPE_CHECKING:
     from .occlusion import Occlusion
 
-__all__ = ["NET_FAMILIES", "net_crossings", "seed_net_crossings"]
+__all__ = ["NET_FAMILIES", "near_misses", "net_crossings", "seed_net_crossings"]
 
 #: the families whose curves form the net of a hiding node asked one by one
 NET_FAMILIES = frozenset({"contour", "boundary"})
 #: where a curve enters another surface's solid: part of the net of every node
 MEETING_FAMILY = "intersection"
+#: passes of refining chords that pass near the net without crossing it
+NEAR_PASSES = 4
 
 
 def _net_curves(s: Samples, hiding: set[int]) -> np.ndarray:
@@ -220,24 +222,178 @@ def net_crossings(
     return np.concatenate(found_q), np.concatenate(found_f)
 
 
-def seed_net_crossings(s: Samples, vis: Occlusion) -> int:
+def seed_net_crossings(
+    s: Samples, vis: Occlusion, near: np.ndarray | None = None, passes: int = NEAR_PASSES
+) -> int:
     """Insert, into every chord that the net crosses twice or more
     (:func:`net_crossings`), one untested sample between each two
     consecutive crossings (so that the interval between them is tested).
-    Returns the number of samples inserted."""
-    q, f = net_crossings(s, vis)
-    if not len(q):
-        return 0
-    order = np.lexsort((f, q))
+
+    With ``near`` (per view: twice the chord tolerance), chords that a net
+    chord passes within ``near`` of without crossing it (:func:`near_misses`)
+    are refined too, both of them: the true curves, each within the chord
+    tolerance of its polyline, may cross there twice (a piece hidden by a
+    fold or beside a cusp of a contour, along which the two run nearly
+    parallel).  The query chord gets samples at its closest approach and at
+    its middle, the net chord at its middle; this repeats (``passes``
+    times at most) on the new chords, whose polylines lie ever closer to
+    their curves, until every such pair crosses or parts.  Returns the
+    number of samples inserted."""
+    total = 0
+    for _ in range(passes if near is not None else 1):
+        q, f = net_crossings(s, vis)
+        after, mid = np.empty(0, np.int64), np.empty(0)
+        if len(q):
+            order = np.lexsort((f, q))
+            q, f = q[order], f[order]
+            pair = np.flatnonzero(q[1:] == q[:-1])  # consecutive crossings of one chord
+            pair = pair[f[pair + 1] > f[pair]]
+            after, mid = q[pair], 0.5 * (f[pair] + f[pair + 1])
+        if near is not None:
+            nq, nf, nn = near_misses(s, vis, near)
+            half = np.full(len(nq) + len(nn), 0.5)
+            after = np.concatenate([after, nq, nq, nn])
+            mid = np.concatenate([mid, nf, half])
+        if not len(after):
+            break
+        key = np.round(mid, 9)
+        order = np.lexsort((key, after))
+        after, mid = after[order], mid[order]
+        new = np.ones(len(after), dtype=bool)
+        new[1:] = (after[1:] != after[:-1]) | (key[order][1:] != key[order][:-1])
+        after, mid = after[new], mid[new]
+        t = s.t[after] + mid * (s.t[after + 1] - s.t[after])
+        c = s.cid[after]
+        xyz, uv, xy = s.evaluate(c, t, True)
+        merge(s, after, c, t, xyz, uv, xy)
+        total += len(after)
+        if near is None:
+            break
+    return total
+
+
+def near_misses(
+    s: Samples, vis: Occlusion, near: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Chords that a sampled net chord passes within ``near[view]`` of
+    without crossing: the chord (its first sample) and the fraction along it
+    of the closest approach, once per chord (the closest of its near net
+    chords), and the net chords met so (each once).  Coincident polylines
+    (a distance of 1e-9 of ``near`` or less: the same curve twice) and
+    chords shorter than 1e-6 of ``near`` are left out.  The outline conics
+    of grouped ellipsoids are exact and take no part."""
+    none = np.empty(0, np.int64), np.empty(0), np.empty(0, np.int64)
+    net = _net_curves(s, set(vis.twins))
+    if not net.any():
+        return none
+    chord = np.flatnonzero(s.cid[1:] == s.cid[:-1])
+    chord = chord[(s.t[chord + 1] - s.t[chord]) > 0]
+    xy = s.xy
+    length = np.abs(xy[chord + 1] - xy[chord]).max(axis=1)
+    view = s.view[s.cid[chord]]
+    chord, view = chord[length > 1e-6 * near[view]], view[length > 1e-6 * near[view]]
+    net_chord = chord[net[s.cid[chord]]]
+    net_view = s.view[s.cid[net_chord]]
+    sag = _sagittas(s, near)
+    found_q, found_f, found_d, found_n = [], [], [], []
+    for k in np.unique(view).tolist():
+        q_k, n_k = chord[view == k], net_chord[net_view == k]
+        if not len(n_k):
+            continue
+        pad = float(near[k])
+        pq, pn = box_pairs(
+            np.minimum(xy[q_k], xy[q_k + 1]) - pad,
+            np.maximum(xy[q_k], xy[q_k + 1]) + pad,
+            np.minimum(xy[n_k], xy[n_k + 1]),
+            np.maximum(xy[n_k], xy[n_k + 1]),
+        )
+        a, b = q_k[pq], n_k[pn]
+        keep = s.cid[a] != s.cid[b]
+        a, b = a[keep], b[keep]
+        d, f = _approach(xy[a], xy[a + 1], xy[b], xy[b + 1])
+        # each polyline lies within its chords' sagitta of its curve: nearer
+        # than both, the curves may cross; else they part (refined chords
+        # have smaller sagittas, so this ends)
+        reach = np.minimum(sag[a] + sag[b], pad)
+        # an approach at an end of the chord is at a tested sample (a line
+        # that ends on a boundary touches it there)
+        ok = (d < reach) & (d > 1e-9 * pad) & (f > 0) & (f < 1)
+        found_q.append(a[ok])
+        found_f.append(f[ok])
+        found_d.append(d[ok])
+        found_n.append(b[ok])
+    if not found_q:
+        return none
+    q, f, d = (np.concatenate(x) for x in (found_q, found_f, found_d))
+    order = np.lexsort((d, q))  # the closest approach of each chord
     q, f = q[order], f[order]
-    pair = np.flatnonzero(q[1:] == q[:-1])  # consecutive crossings of one chord
-    pair = pair[f[pair + 1] > f[pair]]
-    if not len(pair):
-        return 0
-    after = q[pair]
-    mid = 0.5 * (f[pair] + f[pair + 1])
-    t = s.t[after] + mid * (s.t[after + 1] - s.t[after])
-    c = s.cid[after]
-    xyz, uv, xy = s.evaluate(c, t, True)
-    merge(s, after, c, t, xyz, uv, xy)
-    return len(after)
+    first = np.ones(len(q), dtype=bool)
+    first[1:] = q[1:] != q[:-1]
+    return q[first], f[first], np.unique(np.concatenate(found_n))
+
+
+def _sagittas(s: Samples, near: np.ndarray) -> np.ndarray:
+    """For every chord ``i`` (samples ``i``, ``i + 1``), a bound on how far its
+    curve strays from it in the image: twice the larger of the sagittas
+    estimated from the second differences at its two ends (scaled to the
+    chord's length), at most ``near / 2`` (the chord tolerance); a curve of
+    two samples gets that."""
+    n = len(s.t)
+    xy, cid = s.xy, s.cid
+    half = 0.5 * np.asarray(near, dtype=float)[s.view[cid]]
+    out = half.copy()
+    if n < 3:
+        return out
+    inner = (cid[:-2] == cid[1:-1]) & (cid[1:-1] == cid[2:])
+    h0 = np.linalg.norm(xy[1:-1] - xy[:-2], axis=1)
+    h1 = np.linalg.norm(xy[2:] - xy[1:-1], axis=1)
+    # deviation of the middle sample from the chord of its neighbours
+    d2 = np.abs(
+        (xy[2:] - xy[:-2])[:, 0] * (xy[1:-1] - xy[:-2])[:, 1]
+        - (xy[2:] - xy[:-2])[:, 1] * (xy[1:-1] - xy[:-2])[:, 0]
+    ) / np.maximum(h0 + h1, 1e-300)
+    scale = np.maximum(h0, h1) / np.maximum(h0 + h1, 1e-300)
+    at = np.where(inner, d2 * scale, np.inf)  # sample i + 1 as the middle
+    # chord i has its ends at samples i and i + 1: the estimates there
+    left = np.concatenate([[np.inf], at])  # middle sample i
+    right = np.concatenate([at, [np.inf]])  # middle sample i + 1
+    est = np.maximum(left[: n - 1], right[: n - 1])
+    # an end without neighbours on both sides: the other end's estimate
+    est = np.where(np.isfinite(est), est, np.minimum(left[: n - 1], right[: n - 1]))
+    est = np.where(np.isfinite(est), 2 * est, half[: n - 1])
+    out[: n - 1] = np.minimum(est, half[: n - 1])
+    return out
+
+
+def _approach(
+    a0: np.ndarray, a1: np.ndarray, b0: np.ndarray, b1: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Distance between segments ``a0 a1`` and ``b0 b1`` (row by row; 0 where
+    they cross) and the fraction along ``a`` of their closest approach.
+
+    >>> d, f = _approach(np.array([[0.0, 0.0]]), np.array([[2.0, 0.0]]),
+    ...                  np.array([[0.5, 0.1]]), np.array([[0.5, 1.0]]))
+    >>> d.round(12).tolist(), f.tolist()
+    ([0.1], [0.25])
+    """
+    r = a1 - a0
+    rr = np.einsum("ij,ij->i", r, r)
+    rr = np.where(rr > 0, rr, 1.0)
+    # the ends of b against a
+    fa = [np.clip(np.einsum("ij,ij->i", p - a0, r) / rr, 0, 1) for p in (b0, b1)]
+    da = [np.linalg.norm(a0 + f[:, None] * r - p, axis=1) for f, p in zip(fa, (b0, b1))]
+    # the ends of a against b (the approach then lies at an end of a: 0 or 1)
+    q = b1 - b0
+    qq = np.einsum("ij,ij->i", q, q)
+    qq = np.where(qq > 0, qq, 1.0)
+    db = [
+        np.linalg.norm(b0 + np.clip(np.einsum("ij,ij->i", p - b0, q) / qq, 0, 1)[:, None] * q - p,
+                       axis=1)
+        for p in (a0, a1)
+    ]  # fmt: skip
+    d = np.stack([da[0], da[1], db[0], db[1]])
+    f = np.stack([fa[0], fa[1], np.zeros(len(r)), np.ones(len(r))])
+    best = np.argmin(d, axis=0)
+    cols = np.arange(len(r))
+    hit, _ = chord_crossings(a0, a1, b0, b1)
+    return np.where(hit, 0.0, d[best, cols]), f[best, cols]

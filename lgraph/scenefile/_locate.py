@@ -199,16 +199,54 @@ def _key_text(key: Key) -> str:
     return out
 
 
-def _show(value: Any) -> str:
-    """A short, single-line description of a value for messages."""
+#: Characters of a value quoted in a message (:func:`_show`).
+SHOW_LENGTH = 60
+
+
+def _show(value: Any, limit: int = SHOW_LENGTH) -> str:
+    r"""A short, single-line description of a value of the file for messages.
+
+    Strings are quoted as :func:`repr` quotes them (control characters
+    escaped: a message never copies one to the terminal) and, like arrays,
+    cut at about ``limit`` characters with their length: a value of
+    megabytes gives a line of a hundred characters.
+
+    >>> print(_show("\x1b[31m red"))
+    a string '\x1b[31m red'
+    >>> print(_show([1.5, "a", [2], {}, True]))
+    an array [1.5, 'a', [...], {...}, true]
+    >>> print(_show([1] * 10**6))
+    an array [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, ...] (1000000 items)
+    """
+    from .._text import quote
+
     if isinstance(value, str):
-        r = repr(value if len(value) <= 40 else value[:37] + "...")
-        return f"a string {r}"
+        return f"a string {quote(value, limit)}"
     if isinstance(value, bool):
         return f"a boolean ({str(value).lower()})"
     if isinstance(value, dict):
         return "a table"
     if isinstance(value, list):
-        return "an array"
-    r = repr(value)
-    return r if len(r) <= 40 else r[:37] + "..."
+        shown: list[str] = []
+        width = 0
+        for item in value:
+            if isinstance(item, (list, dict)):
+                r = "[...]" if isinstance(item, list) else "{...}"
+            elif isinstance(item, str):
+                r = quote(item, 20)
+            elif isinstance(item, bool):
+                r = str(item).lower()
+            else:
+                r = _plain(repr(item), 20)
+            if width + len(r) > limit:
+                return f"an array [{', '.join(shown)}, ...] ({len(value)} items)"
+            shown.append(r)
+            width += len(r) + 2
+        return f"an array [{', '.join(shown)}]"
+    return _plain(repr(value), limit)
+
+
+def _plain(text: str, limit: int) -> str:
+    """``text`` (a repr) with any non-printable character escaped, cut at ``limit``."""
+    out = "".join(c if c.isprintable() else repr(c)[1:-1] for c in text[:limit])
+    return out if len(text) <= limit else f"{out}... ({len(text)} characters)"

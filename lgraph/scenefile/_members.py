@@ -161,6 +161,9 @@ def _param_value(key: Key, v: Any, annotation: str) -> Any:
 
 
 def _family(key: Key, f: Any, surface: Any) -> Any:
+    from types import SimpleNamespace
+
+    from ..families.cache import family_batches
     from ..families.level import NAMED_FUNCTIONS
     from ..plugins import get_family
 
@@ -181,12 +184,17 @@ def _family(key: Key, f: Any, surface: Any) -> Any:
         args["function"] = level_function(key + ("function",), fn, args.get("argument"))
     kwargs = _params(key, cls, f"family {name!r}", args)
     family = _call(key, f"family {name!r}", cls, kwargs)
-    try:  # catch families the surface cannot draw (no closed forms) before rendering
-        family.batches(surface, None)
+    # catch families the surface cannot draw (no closed forms) and budgets
+    # that need the surface (integrated lines) before rendering; through the
+    # family cache, so the render does not compute view-independent lines again
+    try:
+        family_batches(SimpleNamespace(surface=surface), 0, family, None)
     except (NotImplementedError, AttributeError) as exc:
         raise _Invalid(
             name_key, f"family {name!r} cannot be drawn on this surface: {exc}"
         ) from None
+    except ValueError as exc:  # a budget or a parameter the surface refuses
+        raise _Invalid(key, f"family {name!r}: {str(exc).splitlines()[0]}") from None
     return family
 
 

@@ -20,6 +20,15 @@ Labels (``drawing.labels``) become ``\node[anchor=...]`` with their raw TeX,
 set in the document's fonts, styled ``lgraph/label`` (``lgraph/hidden-label``).  Line
 widths and dashes are in PostScript points (``bp``) and never scaled.
 
+Label text is untrusted (scene files) and TeX runs it, so every label is
+checked again here, also those of drawings built by hand: no control
+characters, no ``^^`` and no command that reaches files or the shell,
+defines commands or changes how TeX reads text (``\input``, ``\write18``,
+``\catcode``, ``\def``, ``\csname``, ...: ``lgraph._text.check_tex``, which
+:class:`lgraph.Label` applies when it is made), balanced braces and no ``%``
+(either would end the ``\node`` early).  Document macros (``$\vx_1$``) pass.
+Layer names keep letters, digits and ``._+-`` (others become ``-``).
+
 >>> import numpy as np, tempfile, os
 >>> from lgraph import Drawing, Page, Stroke
 >>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)), family="u1")
@@ -41,10 +50,12 @@ widths and dashes are in PostScript points (``bp``) and never scaled.
 from __future__ import annotations
 
 import os
+import re
 from typing import Any
 
 import numpy as np
 
+from lgraph._text import check_tex, quote
 from lgraph.layers import drawing_layers
 from lgraph.units import UNITS, length_pt
 
@@ -65,6 +76,62 @@ ANCHORS = {
     "se": "south east",
     "sw": "south west",
 }
+
+
+#: TeX tokens that matter to a node's text: control words and symbols (skipped:
+#: ``\{``, ``\%`` are characters), braces and comments.
+_TEX_TOKEN = re.compile(r"\\(?:[A-Za-z@]+|.)|[{}%]", re.S)
+
+#: Characters of a layer name kept in a TikZ style name (``lgraph/<name>``).
+_NOT_NAME = re.compile(r"[^\w.+-]")
+
+
+def _node_text(text: str) -> str:
+    r"""``text`` as the body of a ``\node``: refused (ValueError) when it is
+    not safe TeX (``lgraph._text.check_tex``) or would end the node early
+    (unbalanced braces, ``%``).
+
+    >>> _node_text(r"$\vx_1 = \{u\}$ 50\%")
+    '$\\vx_1 = \\{u\\}$ 50\\%'
+    >>> _node_text("x}; \\draw (0,0) -- (1,1); {")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: write_tikz: label text must have balanced braces ..., got a } at position 1 ...
+    """
+    if not isinstance(text, str):
+        raise TypeError(f"write_tikz: label text must be a string, got {type(text).__name__}")
+    check_tex("write_tikz: label", text)
+    depth = 0
+    for m in _TEX_TOKEN.finditer(text):
+        tok = m.group()
+        if tok == "%":
+            raise ValueError(
+                "write_tikz: label text must not contain % (TeX would skip the rest of the "
+                f"line, the end of the \\node with it; write \\% for a percent sign), found "
+                f"at position {m.start()} of {quote(text)}"
+            )
+        if tok == "{":
+            depth += 1
+        elif tok == "}":
+            depth -= 1
+            if depth < 0:
+                raise ValueError(
+                    "write_tikz: label text must have balanced braces (it is the body of a "
+                    f"\\node), got a }} at position {m.start()} of {quote(text)} that closes "
+                    "nothing"
+                )
+    if depth:
+        raise ValueError(
+            "write_tikz: label text must have balanced braces (it is the body of a \\node), "
+            f"got {depth} unclosed {{ in {quote(text)}"
+        )
+    return text
+
+
+def _style_name(name: str) -> str:
+    """A layer name as a TikZ style name: characters other than letters,
+    digits and ``._+-`` become ``-`` (a brace or backslash would be TeX)."""
+    return _NOT_NAME.sub("-", str(name)) or "layer"
 
 
 def _num(x: float) -> str:
@@ -113,6 +180,7 @@ def _labels(drawing: Any, fmt: str) -> list[str]:
         return []
     out = []
     for xy, lab in zip(np.asarray(drawing.label_positions(), float), labels):
+        text = _node_text(lab.text)
         if not np.isfinite(xy).all():
             continue
         anchor = ANCHORS.get(str(lab.anchor).lower(), "center")
@@ -121,7 +189,7 @@ def _labels(drawing: Any, fmt: str) -> list[str]:
         style = "lgraph/label" if lab.visible else "lgraph/hidden-label"
         out.append(
             f"\\node[anchor={anchor}, text={{rgb,255:red,{r};green,{g};blue,{b}}}, {style}] "
-            f"at {at} {{{lab.text}}};\n"
+            f"at {at} {{{text}}};\n"
         )
     return out
 
@@ -160,7 +228,8 @@ def write_tikz(
     Raises
     ------
     ValueError
-        For a bad option, before anything is written.
+        For a bad option or a label whose text is not safe TeX (see the module
+        docstring), before anything is written.
     """
     if isinstance(precision, bool) or not isinstance(precision, int) or not 0 <= precision <= 6:
         raise ValueError(f"write_tikz: precision must be an integer from 0 to 6, got {precision!r}")
@@ -171,14 +240,16 @@ def write_tikz(
     if width is not None:  # as Drawing.save(width=...): the page gets that width
         length_pt(width, "write_tikz: width")
         drawing = drawing.sized(width=width)
+    fmt = f"(%.{precision}f,%.{precision}f)"
+    labels = _labels(drawing, fmt)  # checked before anything is written
     pw, ph = drawing.page_size()
     groups = drawing_layers(drawing, layers)
-    fmt = f"(%.{precision}f,%.{precision}f)"
+    names = [_style_name(g.name) for g in groups]
     w_cm, h_cm = pw / _CM, ph / _CM
     head = [
         f"% lgraph figure, {_num(w_cm)} x {_num(h_cm)} cm; "
         "restyle with \\tikzset{lgraph/<layer>/.style={...}}\n",
-        f"% layers: {', '.join(g.name for g in groups)}\n",
+        f"% layers: {', '.join(names)}\n",
     ]
     if standalone:
         head.append(_page_document(pw, ph))
@@ -187,17 +258,17 @@ def write_tikz(
         "{\\tikzset{lgraph/#1/.style={#2}}}}%\n"
     )
     head.append("\\begin{tikzpicture}[x=1cm, y=1cm, line cap=round, line join=round]\n")
-    head.extend(f"\\lgraphstyle{{{g.name}}}{{{_style(g.style)}}}\n" for g in groups)
+    head.extend(f"\\lgraphstyle{{{name}}}{{{_style(g.style)}}}\n" for name, g in zip(names, groups))
     if getattr(drawing, "labels", ()):
         head.append("\\lgraphstyle{label}{}\n\\lgraphstyle{hidden-label}{}\n")
     head.append(f"\\useasboundingbox (0,0) rectangle ({_num(w_cm)},{_num(h_cm)});\n")
     body = []
-    for g in groups:
+    for name, g in zip(names, groups):
         for pts, _ in g.runs:
             run = np.asarray(pts, float) / _CM
             coords = " -- ".join([fmt] * len(run)) % tuple(run.ravel().tolist())
-            body.append(f"\\draw[lgraph/{g.name}] {coords};\n")
-    body.extend(_labels(drawing, fmt))
+            body.append(f"\\draw[lgraph/{name}] {coords};\n")
+    body.extend(labels)
     tail = ["\\end{tikzpicture}%\n"]
     if standalone:
         tail.append("\\end{document}\n")

@@ -1,0 +1,116 @@
+"""Certain hidden lines on numeric surfaces that hide parts of themselves
+(issue #24): a user-written Enneper patch (extent 2, self-intersecting) and a
+helicoid seen from above, in random views.  Between every two samples of a
+visible stroke, points of the same parameter line are asked of the
+surface's own ray test (``Surface.hits``, independent of the renderer's
+sampling): none may be hidden, except within a small band of the stroke's
+ends (the transitions themselves, located to 1e-12 of the span).
+
+The helicoid's pieces hidden beside a cusp of its contour (contour and line
+nearly parallel, 1e-4 apart in the image, the polylines not crossing) were
+drawn visible before the near-miss refinement of
+:func:`lgraph.render.crossings.seed_net_crossings`.  Enneper's patch still
+fails where a line passes behind another sheet across the self-intersection
+curve (marked xfail, strict: it must be made to pass, not forgotten)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import lgraph as lg
+from lgraph._own import ON
+
+
+def enneper(u, v):
+    return np.stack(
+        np.broadcast_arrays(u - u**3 / 3 + u * v**2, v - v**3 / 3 + v * u**2, u**2 - v**2), -1
+    )
+
+
+def helicoid(u, v):
+    return np.stack(np.broadcast_arrays(u * np.cos(v), u * np.sin(v), 0.5 * v), -1)
+
+
+SURFACES = {
+    "enneper": lg.ParametricSurface(enneper, (-2.0, 2.0), (-2.0, 2.0)),
+    "helicoid": lg.ParametricSurface(helicoid, (0.2, 1.5), (0.0, 4 * np.pi)),
+}
+
+
+def _views(seed):
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(3):
+        az, el = rng.uniform(0, 360), rng.uniform(20, 80)
+        out.append(lg.ParallelProjector.from_angles(az, el))
+    return out
+
+
+def _eye_rays(projector, x):
+    if isinstance(projector, lg.CentralProjector):
+        d = projector.eye - x
+        return d, np.ones(len(x))
+    return np.broadcast_to(projector.direction, x.shape), np.full(len(x), np.inf)
+
+
+SELF_INTERSECTING = pytest.mark.xfail(
+    strict=True,
+    reason="not yet certain: where a line passes behind another sheet across the "
+    "surface's own self-intersection curve, that curve is not part of the net (issue #24)",
+)
+
+
+@pytest.mark.parametrize("name", ["helicoid", pytest.param("enneper", marks=SELF_INTERSECTING)])
+@pytest.mark.parametrize("seed", range(2))
+def test_no_hidden_piece_between_two_visible_samples(name, seed):
+    surface = SURFACES[name]
+    scene = lg.Scene()
+    scene.add(surface, lg.ParameterLines(10, 10))
+    size = surface.size
+    for projector in _views(seed):
+        drawing = scene.render(projector, hidden_lines=True)
+        lines = [s for s in drawing.strokes if s.family in ("u1", "u2") and s.visible]
+        assert lines
+        uv, ends = [], []
+        for s in lines:
+            a, b = s.uv[:-1], s.uv[1:]
+            for f in (0.25, 0.5, 0.75):  # points of the line between two samples
+                uv.append(a + f * (b - a))
+            ends.append(s.xyz[[0, -1]])
+        uv = np.concatenate(uv)
+        ends = np.concatenate(ends)
+        x = surface.point(uv[:, 0], uv[:, 1])
+        d, smax = _eye_rays(projector, x)
+        hidden = surface.hits(x, np.array(d), smax, np.full(len(x), ON, dtype=np.int8))
+        # near a transition (the stroke's end) the ray grazes: not asked
+        far = np.min(np.linalg.norm(x[:, None] - ends[None], axis=2), axis=1) > 1e-3 * size
+        bad = hidden & far
+        assert not bad.any(), f"{bad.sum()} hidden points drawn visible in view {projector}"
+
+
+def test_without_the_near_misses_the_helicoid_shows_a_hidden_piece(monkeypatch):
+    """The mutation check: with the crossings only (no near-miss refinement)
+    the helicoid's view of seed 0 draws pieces visible that its ray test
+    hides, so the test above depends on the near misses."""
+    import lgraph.render as render_pkg
+
+    orig = render_pkg.seed_net_crossings
+    monkeypatch.setattr(render_pkg, "seed_net_crossings", lambda s, vis, near=None: orig(s, vis))
+    with pytest.raises(AssertionError, match="hidden points drawn visible"):
+        test_no_hidden_piece_between_two_visible_samples("helicoid", 0)
+
+
+def test_sagittas_bound_the_distance_of_a_circle_from_its_chords():
+    """The chords' sagitta estimates of near-miss detection against the exact
+    sagitta of a circle's chords (r (1 - cos(h/2)))."""
+    from types import SimpleNamespace
+
+    from lgraph.render.crossings import _sagittas
+
+    t = np.linspace(0, np.pi, 21)
+    xy = np.column_stack([np.cos(t), np.sin(t)])
+    s = SimpleNamespace(t=t, xy=xy, cid=np.zeros(21, dtype=int), view=np.zeros(1, dtype=int))
+    sag = _sagittas(s, np.array([1.0]))[:-1]
+    exact = 1 - np.cos((t[1] - t[0]) / 2)
+    assert np.all(sag >= exact) and np.all(sag <= 8 * exact)
