@@ -9,8 +9,10 @@
 from __future__ import annotations
 
 import numbers
+import re
 from collections.abc import Iterator, Mapping
 from typing import Any
+from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
@@ -159,3 +161,28 @@ def page_runs(drawing: Any) -> Iterator[tuple[np.ndarray, Any]]:
     """
     pts, bounds, strokes = page_run_points(drawing)
     yield from ((pts[a:b], s) for (a, b), s in zip(bounds, strokes))
+
+
+#: Characters XML 1.0 cannot hold, not even as ``&#...;``: C0 controls but tab
+#: and line breaks, lone surrogates, U+FFFE and U+FFFF.
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
+
+
+def xml_attr(value: Any) -> str:
+    r"""``value`` as a quoted XML attribute value, whatever its characters.
+
+    ``&``, ``<``, ``>``, ``"`` and whitespace are escaped; characters XML
+    cannot hold become U+FFFD, so the file stays well-formed.  Every string of
+    the SVG that does not come from lgraph itself goes through this or
+    :func:`xml_text` (labels refuse such characters already; this covers
+    drawings built by hand and family names).
+
+    >>> xml_attr("a<b\x07") == '"a&lt;b\ufffd"'
+    True
+    """
+    return quoteattr(_NOT_XML.sub("\ufffd", str(value)))
+
+
+def xml_text(value: Any) -> str:
+    r"""``value`` as XML character data (see :func:`xml_attr`); ``\r`` kept as ``&#13;``."""
+    return escape(_NOT_XML.sub("\ufffd", str(value)), {"\r": "&#13;"})

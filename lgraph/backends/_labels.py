@@ -21,8 +21,7 @@ import numpy as np
 
 from .._text import CLOSEPOLY, CURVE4, FALLBACK_FONT, LINETO, MOVETO, cubic_segments, polygons
 from .._text import text_shape as _shape
-from ._common import fmt_num, hex_color
-from .svg import xml_attr, xml_text
+from ._common import fmt_num, hex_color, xml_attr, xml_text
 
 __all__ = ["path_ops", "pdf_labels", "svg_labels", "png_labels"]
 

@@ -32,9 +32,7 @@ them as one pen each.  Each polyline carries ``data-family`` and
 from __future__ import annotations
 
 import os
-import re
 from typing import Any
-from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
@@ -48,6 +46,8 @@ from ._common import (
     format_points,
     hex_color,
     page_runs,
+    xml_attr,
+    xml_text,
 )
 
 __all__ = ["write_svg", "INKSCAPE_NS", "xml_attr", "xml_text"]
@@ -56,30 +56,6 @@ __all__ = ["write_svg", "INKSCAPE_NS", "xml_attr", "xml_text"]
 INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
 
 _WHITE = (1.0, 1.0, 1.0)
-
-#: Characters XML 1.0 cannot hold, not even as ``&#...;``: C0 controls but tab
-#: and line breaks, lone surrogates, U+FFFE and U+FFFF.
-_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
-
-
-def xml_attr(value: Any) -> str:
-    r"""``value`` as a quoted XML attribute value, whatever its characters.
-
-    ``&``, ``<``, ``>``, ``"`` and whitespace are escaped; characters XML
-    cannot hold become U+FFFD, so the file stays well-formed.  Every string of
-    the SVG that does not come from lgraph itself goes through this or
-    :func:`xml_text` (labels refuse such characters already; this covers
-    drawings built by hand and family names).
-
-    >>> xml_attr("a<b\x07") == '"a&lt;b\ufffd"'
-    True
-    """
-    return quoteattr(_NOT_XML.sub("\ufffd", str(value)))
-
-
-def xml_text(value: Any) -> str:
-    r"""``value`` as XML character data (see :func:`xml_attr`); ``\r`` kept as ``&#13;``."""
-    return escape(_NOT_XML.sub("\ufffd", str(value)), {"\r": "&#13;"})
 
 
 def _polyline(pts: np.ndarray, stroke: Any, precision: int, style_attrs: str) -> str:
