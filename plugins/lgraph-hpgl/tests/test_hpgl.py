@@ -126,3 +126,23 @@ def test_labels_plain_in_the_stroke_font_math_left_out_with_a_warning(tmp_path):
     assert any("TeX mathematics left out" in str(w.message) for w in caught)
     text = path.read_text()
     assert "LBP\x03" in text and "kappa" not in text
+
+
+def test_no_control_character_of_a_hand_built_label_reaches_the_plotter(tmp_path):
+    """A drawing built by hand may hold any label text; ESC (a device command)
+    and ETX (the end of a label) must not reach the HP-GL stream."""
+    import attrs
+    from lgraph_hpgl import write_hpgl
+
+    import lgraph as lg
+
+    scene = lg.Scene()
+    scene.add(lg.Label("P", at=(0, 0, 0)))
+    d = scene.render(lg.ParallelProjector(direction=(0, 0, 1)))
+    bad = attrs.evolve(d.labels[0], text="P\x1b.(\x03IN;\x07Q")
+    d = attrs.evolve(d, labels=(bad,))
+    path = tmp_path / "a.hpgl"
+    write_hpgl(d, path)
+    text = path.read_text()
+    assert "\x1b" not in text and "\x07" not in text
+    assert "LBP.(IN;Q\x03" in text and text.count("\x03") == 1

@@ -73,7 +73,11 @@ def _labels(drawing: Any, colours: dict[tuple[float, ...], int], pens: int) -> l
         pen = colours.setdefault(tuple(lab.style.color), len(colours) % pens + 1)
         h = _CAP * lab.size * _CM_PER_PT
         x, y = np.rint(np.asarray(origin) * UNITS_PER_PT).astype(np.int64).tolist()
-        text = lab.text.replace("\x03", "").encode("ascii", "replace").decode("ascii")
+        # no control character reaches the plotter stream (ESC would start a
+        # device command, ETX ends the label): a drawing built by hand may
+        # hold any text, so they are dropped here as well
+        text = "".join(c for c in lab.text if c.isprintable())
+        text = text.encode("ascii", "replace").decode("ascii")
         out.append(f"PU;SP{pen};SI{0.6 * h:.3f},{h:.3f};PU{x},{y};LB{text}\x03\n")
     if skipped:
         warnings.warn(
