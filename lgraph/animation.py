@@ -41,7 +41,6 @@ import pickle
 import time
 import uuid
 import warnings
-from collections import deque
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
@@ -49,18 +48,20 @@ from typing import Any
 import attrs
 import numpy as np
 
-from ._budget import check_frames
+from ._atomic import signals_as_exception, stop_pool, worker_setup
+from ._budget import frame_list
 from .drawing import Drawing, Stroke
 from .frame_geometry import PIXEL_TOLERANCE, frame_window, pixel_chord
 from .frame_writers import GifWriter, writer_for
 from .page import Page
-from .progress import Progress
+from .progress import ExecutorError, Progress, checked, in_order
 from .projectors import Projector
 from .render import render_views
 from .render.sampling import PointBudgetError
 
 __all__ = [
     "animate",
+    "ExecutorError",
     "frame_window",
     "pixel_chord",
     "PARALLEL_MIN_FRAMES",
@@ -171,6 +172,7 @@ def _load(data: bytes) -> _Job:
 
 
 def _install(data: bytes) -> None:
+    worker_setup()  # stop signals: the default action; ends when the parent is gone
     _INSTALLED["job"] = pickle.loads(data)
 
 
@@ -231,22 +233,6 @@ def _max_workers(executor: Any) -> int:
     return max(1, int(n or os.cpu_count() or 1))
 
 
-def _ordered(submit: Any, items: Sequence[Any], window: int) -> Iterator[Any]:
-    """Submit ``items`` keeping at most ``window`` pending; yield results in order."""
-    pending: deque = deque()
-    it = iter(items)
-    try:
-        for item in it:
-            pending.append(submit(item))
-            if len(pending) >= window:
-                yield pending.popleft().result()
-        while pending:
-            yield pending.popleft().result()
-    finally:
-        for fut in pending:
-            fut.cancel()
-
-
 def _local_pool(job: _Job, workers: int, pools: list) -> Any:
     """A process pool of ``workers`` with ``job`` installed (appended to
     ``pools``), or None when the scene cannot be pickled (with a warning)."""
@@ -265,13 +251,16 @@ def _local_pool(job: _Job, workers: int, pools: list) -> Any:
     return pool
 
 
-def _pooled(job: _Job, batches: list[list[Projector]], workers: int, pools: list) -> Iterator:
+def _pooled(
+    job: _Job, batches: list[list[Projector]], workers: int, pools: list, first: int = 0
+) -> Iterator:
     """Frames of ``batches`` rendered in a local pool of ``workers`` processes
-    (here when the scene cannot be sent)."""
+    (here when the scene cannot be sent); ``first``: the first frame's index."""
     pool = _local_pool(job, workers, pools)
     if pool is None:
         return _flat(job.render(b) for b in batches)
-    return _flat(_ordered(lambda b: pool.submit(_render_installed, b), batches, 2 * workers))
+    results = in_order(lambda b: pool.submit(_render_installed, b), batches, 2 * workers)
+    return _flat(checked(results, batches, job.kind, pool, first))
 
 
 def _adaptive(job: _Job, batches: list[list[Projector]], workers: int, pools: list) -> Iterator:
@@ -292,7 +281,7 @@ def _adaptive(job: _Job, batches: list[list[Projector]], workers: int, pools: li
     n_rest = sum(len(b) for b in rest)
     saved = later * n_rest * (1 - 1 / workers) - max(0.0, first - later)
     if rest and saved > POOL_MIN_SECONDS:
-        yield from _pooled(job, rest, workers, pools)
+        yield from _pooled(job, rest, workers, pools, len(batches[0]) + len(batches[1]))
     else:
         yield from _flat(job.render(b) for b in rest)
 
@@ -322,11 +311,13 @@ def _frames(
         )
     k = _max_workers(executor)
     if isinstance(executor, cf.ThreadPoolExecutor):  # shares this process's scene
-        return _flat(_ordered(lambda b: executor.submit(job.render, b), batches, 2 * k))
+        results = in_order(lambda b: executor.submit(job.render, b), batches, 2 * k)
+        return _flat(checked(results, batches, job.kind, executor))
     if _is_dask(executor):  # the job goes to every worker once
         scattered = executor._client.scatter(job, broadcast=True, hash=False)
         submit = executor.submit
-        return _flat(_ordered(lambda b: submit(_render_scattered, scattered, b), batches, 2 * k))
+        results = in_order(lambda b: submit(_render_scattered, scattered, b), batches, 2 * k)
+        return _flat(checked(results, batches, job.kind, executor))
     # any other executor: batches of frames, each with the pickled job; a worker
     # unpickles a job once and keeps it for the following batches
     try:
@@ -337,13 +328,14 @@ def _frames(
             "cloudpickle, or use a ThreadPoolExecutor or executor=None"
         ) from e
     token = uuid.uuid4().hex
-    return _flat(_ordered(lambda b: executor.submit(_render_chunk, token, data, b), batches, 2 * k))
+    results = in_order(lambda b: executor.submit(_render_chunk, token, data, b), batches, 2 * k)
+    return _flat(checked(results, batches, job.kind, executor))
 
 
 # -- the public function --------------------------------------------------------------
 def _check_views(views: Any) -> list[Projector]:
-    try:
-        views = list(views)
+    try:  # MAX_FRAMES: len() of a sequence first; a generator read lazily, refused past it
+        views = frame_list("animate", views)
     except TypeError:
         raise TypeError(
             f"animate: views must be a sequence of projectors (lg.orbit(...)), got "
@@ -351,7 +343,6 @@ def _check_views(views: Any) -> list[Projector]:
         ) from None
     if not views:
         raise ValueError("animate: views is empty; give at least one projector")
-    check_frames("animate", len(views))  # the budget of frames (MAX_FRAMES)
     for k, v in enumerate(views):
         if not isinstance(v, Projector):
             raise TypeError(f"animate: views[{k}] must be a Projector, got {type(v).__name__}")
@@ -463,36 +454,38 @@ def animate(
     aspect = (window[3] - window[1]) / (window[2] - window[0])
     height = max(16, round((width - 2 * margin) * aspect + 2 * margin))
     page = Page(width=float(width), height=float(height), margin=margin)
-    writer = writer_for(path, len(views), fps, frame_format, loop)
-    kind = writer.kind
-    if kind == "bytes":
-        kind = writer.fmt
-    if options.get("tolerance") == "pixel":
-        del options["tolerance"]  # vector frames can be zoomed: the render's default
-        if kind == "png":
-            options["chord"] = pixel_chord(page, window)
-    gray = isinstance(writer, GifWriter)  # frames in one channel may differ in mode
-    job = _Job(scene, window, page, (width, height), kind, options, gray)
-
-    bar = Progress(len(views), progress)
-    pools: list = []
-    frames = None
-    try:
-        frames = _frames(job, views, executor, workers, pools)
-        for frame in frames:
-            writer.add(frame)
-            bar.update()
-        result = writer.close()
-    except BaseException:
-        writer.abort()
-        if frames is not None and hasattr(frames, "close"):
-            frames.close()  # cancels the frames not yet started
-        for pool in pools:
-            pool.shutdown(wait=False, cancel_futures=True)
-        pools.clear()
-        raise
-    finally:
-        bar.close()
-        for pool in pools:
-            pool.shutdown()
+    # a SIGTERM or SIGHUP from here on stops the work cleanly (no temporary
+    # file, no worker left), then takes its usual course
+    with signals_as_exception():
+        writer = writer_for(path, len(views), fps, frame_format, loop)
+        bar = Progress(len(views), progress)
+        pools: list = []
+        frames = None
+        try:
+            kind = writer.kind
+            if kind == "bytes":
+                kind = writer.fmt
+            if options.get("tolerance") == "pixel":
+                del options["tolerance"]  # vector frames can be zoomed: the render's default
+                if kind == "png":
+                    options["chord"] = pixel_chord(page, window)
+            gray = isinstance(writer, GifWriter)  # frames in one channel may differ in mode
+            job = _Job(scene, window, page, (width, height), kind, options, gray)
+            frames = _frames(job, views, executor, workers, pools)
+            for frame in frames:
+                writer.add(frame)
+                bar.update()
+            result = writer.close()
+        except BaseException:
+            writer.abort()
+            if frames is not None and hasattr(frames, "close"):
+                frames.close()  # cancels the frames not yet started
+            for pool in pools:
+                stop_pool(pool)  # ends its workers
+            pools.clear()
+            raise
+        finally:
+            bar.close()
+            for pool in pools:
+                pool.shutdown()
     return Path(result)

@@ -6,6 +6,18 @@ any rendering where they can be; they exit with status 2 and one message
 it; it is accepted before or after the command).  An unexpected failure
 exits with status 1, also without a traceback unless ``--debug``.
 
+A SIGTERM or SIGHUP stops ``render``, ``animate`` and ``demo`` cleanly, as
+Ctrl-C does (``lgraph._atomic.signals_as_exception``): no temporary file is
+left, the old file at the target is kept, worker processes are stopped, and
+the command prints ``lgraph <command>: terminated by SIGTERM`` and exits with
+128 + the signal's number (143; Ctrl-C: 130).  Plugin code that calls
+``sys.exit()`` is an error naming the plugin (status 2), not an exit.
+
+Output paths are taken as written, ``..`` resolved lexically
+(``os.path.normpath``): ``-o a/b/../../x.pdf`` writes ``x.pdf`` and creates
+no folder ``a/b``, even where ``a`` is a symbolic link.  A file name longer
+than the file system takes is refused before any work.
+
 ``lgraph render scene.toml -o fig.pdf -o fig.png`` renders once and saves to
 every output.  A ``[save]`` option that only some of the outputs' backends
 take is then a warning, ``lgraph render: warning: scene.toml:12: save.title:
@@ -30,6 +42,10 @@ class InputError(Exception):
     """A problem with what the user gave (exit status 2)."""
 
 
+class Failure(Exception):
+    """A command that could not finish, for a reason it can say (exit status 1)."""
+
+
 def demo_scene():  # noqa: ANN201
     """The figure of ``lgraph demo``: the paper's Figure 7.2, the lines of
     curvature of a triaxial ellipsoid (as ``gallery/fig_7_2_ellipsoid.py``)."""
@@ -41,7 +57,11 @@ def demo_scene():  # noqa: ANN201
 
 
 def _output_folder(folder: Path) -> Path:
-    """Create ``folder`` if missing; refuse one that is a file or not writable."""
+    """Create ``folder`` (taken lexically: only the folders it needs) if
+    missing; refuse one that is a file or not writable."""
+    from ._atomic import lexical
+
+    folder = lexical(folder)
     if folder.exists() and not folder.is_dir():
         raise InputError(f"{str(folder)!r} is not a folder")
     try:
@@ -53,20 +73,35 @@ def _output_folder(folder: Path) -> Path:
     return folder
 
 
+def _check_name(out: Path, given: Path) -> None:
+    """Refuse an output whose file name is longer than the file system takes
+    (``given``: ``out`` as written, for the message)."""
+    from ._atomic import check_name
+
+    try:
+        check_name(out, "output")
+    except OSError as e:
+        why = str(e.strerror or e).removeprefix("output: ")
+        raise InputError(f"output {str(given)!r}: {why}") from None
+
+
 def check_output(path: str | os.PathLike[str]) -> Path:
     """Check an output file before any work: a known suffix (a backend for
-    it), not a folder, its folder existing (created if missing) and
-    writable.  Raises :class:`InputError`."""
+    it), a name the file system takes, not a folder, its folder existing
+    (created if missing) and writable.  The path is taken lexically
+    (``..`` resolved as text).  Raises :class:`InputError`."""
+    from ._atomic import lexical
     from .backends import get_backend
     from .plugins import PluginError
 
-    out = Path(path)
+    given, out = Path(path), lexical(path)
     try:
         get_backend(out.suffix)
     except (ValueError, PluginError) as e:
         raise InputError(str(e).splitlines()[0].replace("Drawing.save: ", "")) from None
+    _check_name(out, given)
     if out.is_dir():
-        raise InputError(f"output {str(out)!r} is a folder; give a file name")
+        raise InputError(f"output {str(given)!r} is a folder; give a file name")
     _output_folder(out.parent if str(out.parent) else Path("."))
     return out
 
@@ -92,10 +127,12 @@ def _same_file(a: Path, b: Path) -> bool:
     return os.path.normcase(a) == os.path.normcase(b)
 
 
-def _refuse_scene_file(out: Path, scene: str | os.PathLike[str]) -> None:
-    """Refuse to write over the scene file being read."""
+def _refuse_scene_file(out: Path, scene: str | os.PathLike[str], given: Path | None = None) -> None:
+    """Refuse to write over the scene file being read (``given``: ``out`` as
+    written, for the message)."""
     if _same_file(out, Path(scene)):
-        raise InputError(f"output {str(out)!r} is the scene file itself; give another output file")
+        shown = str(given if given is not None else out)
+        raise InputError(f"output {shown!r} is the scene file itself; give another output file")
 
 
 def check_outputs(
@@ -104,14 +141,18 @@ def check_outputs(
     """Check the outputs of one rendering before any work: none is the scene
     file, none is given twice, and each passes :func:`check_output`.
     Raises :class:`InputError`."""
-    outs = [Path(o) for o in outputs]
+    from ._atomic import lexical
+
+    given = [Path(o) for o in outputs]  # for messages: as written
+    outs = [lexical(o) for o in outputs]
     for i, out in enumerate(outs):
-        _refuse_scene_file(out, scene)
-        for earlier in outs[:i]:
+        _refuse_scene_file(out, scene, given[i])
+        for k, earlier in enumerate(outs[:i]):
             if _same_file(out, earlier):
-                also = f" (also as {str(earlier)!r})" if str(earlier) != str(out) else ""
-                raise InputError(f"output {str(out)!r} is given twice{also}; give each once")
-    return [check_output(out) for out in outs]
+                shown, first = str(given[i]), str(given[k])
+                also = f" (also as {first!r})" if first != shown else ""
+                raise InputError(f"output {shown!r} is given twice{also}; give each once")
+    return [check_output(g) for g in given]
 
 
 def _load_scene(scene: str, outputs: list[Path], command: str) -> tuple[Any, Any, dict[str, Any]]:
@@ -163,12 +204,14 @@ def _render(args: argparse.Namespace) -> int:
 
 
 def _animate(args: argparse.Namespace) -> int:
-    from .animation import animate
+    from ._atomic import lexical
+    from .animation import ExecutorError, animate
     from .frame_writers import ANIMATION_SUFFIXES
     from .projectors import CentralProjector, orbit
     from .scenefile import SceneFileError, load_scene_file
 
-    out = Path(args.output or Path(args.scene).with_suffix(".gif"))
+    given = Path(args.output or Path(args.scene).with_suffix(".gif"))
+    out = lexical(given)
     suffix = out.suffix.lower()
     if suffix and suffix not in ANIMATION_SUFFIXES:  # checked before any work
         raise InputError(
@@ -176,7 +219,8 @@ def _animate(args: argparse.Namespace) -> int:
             ".webp, .pdf (a page per frame) or a folder name without suffix (numbered frames)"
         )
     if suffix:
-        _refuse_scene_file(out, args.scene)
+        _refuse_scene_file(out, args.scene, given)
+        _check_name(out, given)
     _output_folder(out if not suffix else (out.parent if str(out.parent) else Path(".")))
     client_class = None
     if args.scheduler:
@@ -199,11 +243,14 @@ def _animate(args: argparse.Namespace) -> int:
     render = dict(options.get("render", {}))
     hidden = bool(render.pop("hidden_lines", False)) or args.hidden_lines
     kw = dict(fps=args.fps, hidden_lines=hidden, width=args.width, render_options=render)
-    if client_class is not None:
-        with client_class(args.scheduler, timeout=args.timeout) as client:
-            path = animate(scene, views, out, executor=client.get_executor(), **kw)
-    else:
-        path = animate(scene, views, out, workers=args.workers, **kw)
+    try:
+        if client_class is not None:
+            with client_class(args.scheduler, timeout=args.timeout) as client:
+                path = animate(scene, views, out, executor=client.get_executor(), **kw)
+        else:
+            path = animate(scene, views, out, workers=args.workers, **kw)
+    except ExecutorError as e:
+        raise Failure(str(e).removeprefix("animate: ")) from e
     print(f"wrote {Path(path).resolve()}")
     return 0
 
@@ -264,7 +311,7 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument(
         "outdir", nargs="?", default=".", help="folder to write into (created if missing)"
     )
-    d.set_defaults(func=_demo)
+    d.set_defaults(func=_demo, stoppable=True)
     r = sub.add_parser("render", help="render a TOML scene file")
     r.add_argument("scene", help="scene file (.toml)")
     r.add_argument(
@@ -283,7 +330,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="clean for a pen plotter: merge paths, drop duplicates and fragments, "
         "sort for short pen-up travel (Drawing.for_plotter)",
     )
-    r.set_defaults(func=_render)
+    r.set_defaults(func=_render, stoppable=True)
     a = sub.add_parser(
         "animate",
         help="render a TOML scene file turning about the z axis (GIF, APNG, WebP, PDF, frames)",
@@ -324,7 +371,7 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument(
         "--timeout", type=float, default=30.0, help="seconds to reach the scheduler (default 30)"
     )
-    a.set_defaults(func=_animate)
+    a.set_defaults(func=_animate, stoppable=True)
     g = sub.add_parser("gallery", help="build every gallery figure (PDF + PNG) and index.html")
     g.add_argument("outdir", help="output folder (created if missing)")
     g.add_argument("-j", "--jobs", type=_positive_int, default=None, help="worker processes")
@@ -342,28 +389,54 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status (0 ok, 1 failure, 2 bad input)."""
+    """Run the command line; returns the exit status (0 ok, 1 failure, 2 bad
+    input, 128 + n stopped by signal n: 130 Ctrl-C, 143 SIGTERM)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
+    from contextlib import nullcontext
+
+    from ._atomic import Terminated, signals_as_exception
     from .plugins import PluginError
 
     prefix = f"lgraph {args.command}: error:"
+    # render, animate, demo: a SIGTERM or SIGHUP stops them cleanly (the
+    # gallery keeps going past a failing figure: there the signal ends it)
+    stoppable = getattr(args, "stoppable", False)
     try:
-        return int(args.func(args) or 0)
+        with signals_as_exception(take_default=False) if stoppable else nullcontext():
+            try:
+                return int(args.func(args) or 0)
+            except SystemExit as e:  # from plugin code: an error naming the plugin
+                error = _plugin_exit(e)
+                if error is None:
+                    raise
+                raise error from e
     except KeyboardInterrupt:
         print(f"lgraph {args.command}: interrupted", file=sys.stderr)
         return 130
+    except Terminated as e:
+        print(f"lgraph {args.command}: {e}", file=sys.stderr)
+        return e.exit_status
     except (InputError, ValueError, TypeError, PluginError, OSError, NotImplementedError) as e:
         if args.debug:
             raise
         text = str(e) or type(e).__name__
+        if isinstance(e, PluginError):  # its first line (the rest: the plugin's traceback)
+            text = text.splitlines()[0].removeprefix("lgraph: ").removesuffix("; original error:")
+            if e.__cause__ is not None and not isinstance(e.__cause__, SystemExit):
+                text += f" ({_short(e.__cause__)})"
         if isinstance(e, OSError) and not isinstance(e, FileNotFoundError) and e.filename:
             text = f"{e.strerror or e}: {e.filename}"
         print(f"{prefix} {text}", file=sys.stderr)
         return 2
+    except Failure as e:
+        if args.debug:
+            raise
+        print(f"{prefix} {e}", file=sys.stderr)
+        return 1
     except Exception as e:  # noqa: BLE001 - no traceback for the user without --debug
         if args.debug:
             raise
@@ -372,6 +445,36 @@ def main(argv: Sequence[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 1
+
+
+def _plugin_exit(exc: SystemExit) -> Exception | None:
+    """A ``PluginError`` naming the plugin whose code raised ``exc`` (the
+    innermost frame of its traceback in a loaded plugin's module), or None:
+    a plugin must not end lgraph."""
+    from ._atomic import exit_message
+    from .plugins import PluginError, installed_plugins
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        infos = [i for i in installed_plugins(load=False) if i.status == "ok"]
+    found = None
+    tb = exc.__traceback__
+    while tb is not None:
+        module = str(tb.tb_frame.f_globals.get("__name__", ""))
+        code = tb.tb_frame.f_code
+        outer = str(getattr(code, "co_qualname", code.co_name)).split(".")[0]  # Ball.__init__
+        mine = [i for i in infos if (module + ".").startswith(i.value.partition(":")[0] + ".")]
+        if mine:  # the entry point named in the frame first (a module may hold several)
+            exact = [i for i in mine if i.value.rpartition(":")[2].split(".")[0] == outer]
+            found = (exact or mine)[0]
+        tb = tb.tb_next
+    return None if found is None else PluginError(exit_message(f"lgraph: {found.who}", exc))
+
+
+def _short(exc: BaseException) -> str:
+    """``ModuleNotFoundError: No module named 'x'``, ``SystemExit: 3``: one line."""
+    text = str(exc).splitlines()[0] if str(exc) else ""
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -389,7 +389,7 @@ class Drawing:
         try:
             with removed_on_signals(tmp):
                 writer(drawing, Path(tmp), **options)
-                publish(tmp, path)
+                path = publish(tmp, path)  # normalized: "a/../x.svg" is "x.svg"
         except BaseException as exc:
             try:
                 os.unlink(tmp)

@@ -18,7 +18,8 @@ never all the decoded frames (the GIF writer keeps the last grey one):
 
 A file is written to a temporary name beside the target and renamed when
 complete (:meth:`FrameWriter.close`); :meth:`FrameWriter.abort` (called on
-any error or interrupt) removes it, so no half-written file is left.
+any error or interrupt) removes it, so no half-written file is left.  Paths
+are taken as written, ``..`` resolved lexically (``lgraph._atomic.lexical``).
 
 >>> import io, tempfile, os
 >>> from PIL import Image
@@ -46,7 +47,7 @@ import zlib
 from pathlib import Path
 from typing import Any
 
-from ._atomic import publish, temporary_beside
+from ._atomic import check_name, lexical, publish, temporary_beside
 
 __all__ = [
     "FrameWriter",
@@ -76,7 +77,7 @@ class FrameWriter:
     kind = "png"
 
     def __init__(self, path: str | os.PathLike[str], n_frames: int, fps: float) -> None:
-        self.path = Path(path)
+        self.path = lexical(path)
         self.n_frames = n_frames
         self.fps = fps
         self.count = 0
@@ -375,7 +376,7 @@ class FolderWriter:
     kind = "bytes"
 
     def __init__(self, folder: Any, n_frames: int, fmt: str) -> None:
-        self.folder = Path(folder)
+        self.folder = lexical(folder)
         self.folder.mkdir(parents=True, exist_ok=True)
         self.fmt = fmt
         self.n_frames = n_frames
@@ -413,8 +414,10 @@ def writer_for(
 ) -> Any:
     """The writer for ``path``: by suffix, or a folder of frames when it has none
     (or is an existing folder)."""
-    p = Path(path)
+    p = lexical(path)
     suffix = p.suffix.lower()
+    if suffix:  # a name the file system takes, before anything else looks at it
+        check_name(p, "animate")
     if p.is_dir() or not suffix:
         fmt = str(frame_format).lower().lstrip(".")
         if fmt not in FRAME_FORMATS:

@@ -17,10 +17,11 @@ Discovery is lazy: ``import lgraph`` scans nothing; the first lookup of a
 kind (:func:`get_surface`, :func:`get_family`, a file suffix that
 ``Drawing.save`` does not know, ``lgraph plugins``) reads the entry-point
 metadata of that group, and a plugin's module is imported only when one of
-its names is used.  A plugin that fails to import becomes a stand-in: the
-failure is reported once (:class:`PluginWarning`), and using the stand-in
-raises :class:`PluginError` carrying the original traceback.  It never breaks
-lgraph or other plugins.  Two plugins claiming the same name, or a plugin
+its names is used.  A plugin that fails to import (an exception, or
+``sys.exit()``) or is not callable becomes a stand-in: the failure is reported
+once (:class:`PluginWarning`); using it raises :class:`PluginError` with the
+original traceback, as does a factory calling ``sys.exit()``.  It never
+breaks lgraph or other plugins.  Two plugins claiming the same name, or a plugin
 claiming a built-in name, are reported with a warning that names both
 distributions; the first one found (``sys.path`` order) or the built-in wins.
 
@@ -42,6 +43,8 @@ import traceback
 import warnings
 from collections.abc import Callable, Iterable
 from typing import Any
+
+from ._atomic import no_exit
 
 __all__ = [
     "GROUPS",
@@ -111,17 +114,26 @@ class PluginInfo:
         """``distribution version (module:attr)`` for messages."""
         return f"{self.distribution} {self.version} ({self.value})"
 
+    @property
+    def who(self) -> str:
+        """``surface plugin 'name' from <origin>`` for messages."""
+        return f"{self.kind} plugin {self.name!r} from {self.origin}"
+
     def load(self) -> Any:
         """Import the plugin object once; on failure return a stand-in (and warn once)."""
         with self._lock:
             if self.status == "not loaded":
                 try:
-                    self._obj = self.entry_point.load()
-                    self.status = "ok"
-                except Exception as exc:  # noqa: BLE001 - a plugin may raise anything
-                    self.error = exc
+                    obj = self.entry_point.load()
+                    if not callable(obj):
+                        kind = f"{type(obj).__name__} {obj!r:.40}"
+                        raise TypeError(f"{self.value!r} is not a class or function ({kind})")
+                    if not isinstance(obj, type) and self.kind != "backend":  # a factory
+                        obj = no_exit(obj, f"lgraph: {self.who}", PluginError)
+                    self._obj, self.status = obj, "ok"
+                except (Exception, SystemExit) as exc:  # noqa: BLE001 - a plugin may raise anything
+                    self.error, self.status = exc, f"failed: {type(exc).__name__}: {exc}"
                     self.traceback = "".join(traceback.format_exception(exc))
-                    self.status = f"failed: {type(exc).__name__}: {exc}"
                     self._obj = _BrokenPlugin(self)
                     warnings.warn(
                         f"lgraph: {self.kind} plugin {self.name!r} from {self.origin} failed to "
@@ -136,14 +148,12 @@ class PluginInfo:
 
 
 def _dist_name(dist: Any) -> str:
-    if dist is None:
-        return "(unknown distribution)"
     name = getattr(dist, "name", None)
-    if name is None:
+    if name is None and dist is not None:
         try:
             name = dist.metadata["Name"]
         except Exception:  # noqa: BLE001
-            name = None
+            pass
     return str(name or "(unknown distribution)")
 
 
@@ -156,16 +166,14 @@ class _BrokenPlugin:
 
     def _raise(self) -> Any:
         info = self._info
-        raise PluginError(
-            f"lgraph: {info.kind} plugin {info.name!r} from {info.origin} failed to load; "
-            f"original error:\n{info.traceback}"
-        ) from info.error
+        error = PluginError(f"lgraph: {info.who} failed to load; original error:\n{info.traceback}")
+        raise error from info.error
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         return self._raise()
 
     def __getattr__(self, name: str) -> Any:
-        if name.startswith("__"):
+        if name.startswith("_"):  # introspection (inspect.signature, attrs.has, ...)
             raise AttributeError(name)
         return self._raise()
 
@@ -252,9 +260,7 @@ def _reset() -> None:
             if families.FAMILIES.get(info.name) is not None and info.status != "not loaded":
                 families.FAMILIES.pop(info.name, None)
         for suffix, info in _plugins.get("backend", {}).items():
-            if isinstance(_BACKENDS.get(suffix), _LazyBackend):
-                _BACKENDS.pop(suffix, None)
-            elif info.status != "not loaded":
+            if isinstance(_BACKENDS.get(suffix), _LazyBackend) or info.status != "not loaded":
                 _BACKENDS.pop(suffix, None)
         _plugins.clear()
         _ignored.clear()
@@ -287,9 +293,7 @@ def _builtin_surfaces() -> dict[str, type]:
 
 
 def _surface_table() -> dict[str, Any]:
-    table: dict[str, Any] = dict(_builtin_surfaces())
-    table.update(_registered_surfaces)
-    return table
+    return {**_builtin_surfaces(), **_registered_surfaces}
 
 
 def register_surface(name: str, cls: type, *, replace: bool = False) -> None:
@@ -424,11 +428,10 @@ def installed_plugins(load: bool = True) -> list[PluginInfo]:
     out: list[PluginInfo] = []
     for kind, table in tables.items():
         for name, info in table.items():
-            if load:
-                if kind == "family":
-                    get_family(name)
-                else:
-                    info.load()
+            if load and kind == "family":
+                get_family(name)  # loads and registers it
+            elif load:
+                info.load()
             out.append(info)
         out.extend(_ignored.get(kind, []))
     return out

@@ -7,11 +7,14 @@ sampling): none may be hidden, except within a small band of the stroke's
 ends (the transitions themselves, located to 1e-12 of the span).
 
 The helicoid's pieces hidden beside a cusp of its contour (contour and line
-nearly parallel, 1e-4 apart in the image, the polylines not crossing) were
-drawn visible before the near-miss refinement of
-:func:`lgraph.render.crossings.seed_net_crossings`.  Enneper's patch still
-fails where a line passes behind another sheet across the self-intersection
-curve (marked xfail, strict: it must be made to pass, not forgotten)."""
+nearly parallel, 1e-4 apart in the image, the polylines not crossing) are
+found by the near-miss refinement of
+:func:`lgraph.render.crossings.seed_net_crossings`, which is off by default
+for now (it regressed other visibility tests): xfail by default, passing
+with it on.  Enneper's patch still fails where a line passes behind another
+sheet across the self-intersection curve.  The xfails must
+be made to pass, not forgotten (the helicoid's is not strict: in one of the
+two seeds' views no piece happens to escape)."""
 
 from __future__ import annotations
 
@@ -54,6 +57,11 @@ def _eye_rays(projector, x):
     return np.broadcast_to(projector.direction, x.shape), np.full(len(x), np.inf)
 
 
+NEAR_MISSES_OFF = pytest.mark.xfail(
+    strict=False,  # one of the two seeds' views happens to be drawn right
+    reason="the near-miss refinement that finds these pieces is off by default "
+    "(NEAR_PASSES = 0: it regressed the dense-ray agreement of other surfaces; issue #24)",
+)
 SELF_INTERSECTING = pytest.mark.xfail(
     strict=True,
     reason="not yet certain: where a line passes behind another sheet across the "
@@ -61,7 +69,13 @@ SELF_INTERSECTING = pytest.mark.xfail(
 )
 
 
-@pytest.mark.parametrize("name", ["helicoid", pytest.param("enneper", marks=SELF_INTERSECTING)])
+@pytest.mark.parametrize(
+    "name",
+    [
+        pytest.param("helicoid", marks=NEAR_MISSES_OFF),
+        pytest.param("enneper", marks=SELF_INTERSECTING),
+    ],
+)
 @pytest.mark.parametrize("seed", range(2))
 def test_no_hidden_piece_between_two_visible_samples(name, seed):
     surface = SURFACES[name]
@@ -89,16 +103,15 @@ def test_no_hidden_piece_between_two_visible_samples(name, seed):
         assert not bad.any(), f"{bad.sum()} hidden points drawn visible in view {projector}"
 
 
-def test_without_the_near_misses_the_helicoid_shows_a_hidden_piece(monkeypatch):
-    """The mutation check: with the crossings only (no near-miss refinement)
-    the helicoid's view of seed 0 draws pieces visible that its ray test
-    hides, so the test above depends on the near misses."""
-    import lgraph.render as render_pkg
+@pytest.mark.parametrize("seed", range(2))
+def test_with_the_near_misses_the_helicoid_hides_its_pieces(monkeypatch, seed):
+    """With the near-miss refinement on (``NEAR_PASSES = 4``), the pieces the
+    helicoid hides beside its contour's cusps (contour and line 1e-4 apart,
+    the polylines not crossing) are found in every view above."""
+    import lgraph.render.crossings as crossings
 
-    orig = render_pkg.seed_net_crossings
-    monkeypatch.setattr(render_pkg, "seed_net_crossings", lambda s, vis, near=None: orig(s, vis))
-    with pytest.raises(AssertionError, match="hidden points drawn visible"):
-        test_no_hidden_piece_between_two_visible_samples("helicoid", 0)
+    monkeypatch.setattr(crossings, "NEAR_PASSES", 4)
+    test_no_hidden_piece_between_two_visible_samples("helicoid", seed)
 
 
 def test_sagittas_bound_the_distance_of_a_circle_from_its_chords():

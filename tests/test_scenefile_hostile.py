@@ -115,3 +115,21 @@ def test_hostile_values_load_or_are_refused_readably(tmp_path_factory, place, va
     assert time.perf_counter() - t0 < 10  # generous; the checks come before the work
     assert set(folder.iterdir()) == before  # nothing written, nothing evaluated
     assert not (folder / "pwned").exists()
+
+
+def test_a_huge_scene_file_is_refused_before_it_is_read(tmp_path) -> None:
+    """A 4.5 MB array took 19 s to refuse (12 s in tomllib): the size is
+    checked first, and the message is one short line."""
+    from lgraph.scenefile import MAX_SCENE_FILE_BYTES
+
+    path = tmp_path / "big.toml"
+    path.write_text(
+        '[projector]\nkind = "parallel"\nazimuth = 0\nelevation = 0\n[[object]]\n'
+        'surface = "sphere"\nparams = { r = [' + "1, " * 1_500_000 + "1] }\n",
+        encoding="utf-8",
+    )
+    assert path.stat().st_size > MAX_SCENE_FILE_BYTES
+    t0 = time.perf_counter()
+    with pytest.raises(SceneFileError, match="at most 1000000 .MAX_SCENE_FILE_BYTES."):
+        load_scene_file(path)
+    assert time.perf_counter() - t0 < 5

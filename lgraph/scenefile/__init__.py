@@ -178,6 +178,9 @@ from ._values import _STYLE  # noqa: F401 - the format's keys
 
 __all__ = ["load_scene_file", "parse_scene", "SceneFileError", "SceneFileWarning"]
 
+#: the largest scene file read (bytes), checked before reading it
+MAX_SCENE_FILE_BYTES = 1_000_000
+
 
 class SceneFileError(Exception):
     """A scene file that cannot be rendered; the message has one line per
@@ -272,6 +275,13 @@ def load_scene_file(
     tomllib = _toml()
     shown = _readable(str(path), 300)
     try:
+        size = os.path.getsize(path)
+        if size > MAX_SCENE_FILE_BYTES:  # before reading: tomllib takes ~3 s per MB
+            raise SceneFileError(
+                f"{shown}: the scene file has {size} bytes, at most {MAX_SCENE_FILE_BYTES} "
+                "(MAX_SCENE_FILE_BYTES): a scene is a few tables, not data",
+                path=shown,
+            )
         text = Path(path).read_text(encoding="utf-8-sig")  # a BOM is fine
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
