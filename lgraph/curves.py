@@ -109,18 +109,11 @@ class Curve:
         >>> c(np.array([np.pi])).round(12).tolist()
         [[-1.0, 0.0, 0.5]]
         """
-        from .formula_maps import FormulaMap, constant_range, constants_dict
+        from .formula_maps import constant_range, map_orders
 
-        texts, c = (x, y, z), constants_dict(constants)
-        t0, t1 = constant_range(t, c, "Curve.from_formulas: t")
-        return cls(
-            FormulaMap(texts, ("t",), c),
-            t0,
-            t1,
-            derivative_func=FormulaMap(texts, ("t",), c, order=1),
-            second_derivative_func=FormulaMap(texts, ("t",), c, order=2),
-            closed=closed,
-        )
+        f, f1, f2 = map_orders((x, y, z), ("t",), constants)
+        t0, t1 = constant_range(t, f.constants, "Curve.from_formulas: t")
+        return cls(f, t0, t1, derivative_func=f1, second_derivative_func=f2, closed=closed)
 
     def __call__(self, t: Any) -> np.ndarray:
         return np.asarray(self.func(np.asarray(t, dtype=float)), dtype=float)

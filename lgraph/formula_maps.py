@@ -27,7 +27,14 @@ import numpy as np
 
 from .formula import Formula, compile_formulas, formula
 
-__all__ = ["FormulaMap", "constant_range", "constants_dict", "constant_value", "formula_function"]
+__all__ = [
+    "FormulaMap",
+    "constant_range",
+    "constants_dict",
+    "map_orders",
+    "constant_value",
+    "formula_function",
+]
 
 
 def _texts(value: Any) -> tuple[str, ...]:
@@ -124,6 +131,17 @@ def _rebuild(
     packed: bool,
 ) -> FormulaMap:
     return FormulaMap(texts, variables, constants, order=order, stack=stack, packed=packed)
+
+
+def map_orders(
+    texts: tuple[str, ...], variables: tuple[str, ...], constants: Any, stack: bool = True
+) -> tuple[FormulaMap, FormulaMap, FormulaMap]:
+    """The values, first and second derivatives of ``texts`` as three maps:
+    what a surface, curve or profile of formulas is made of."""
+    c = constants_dict(constants)
+    return tuple(  # type: ignore[return-value]
+        FormulaMap(texts, variables, c, order=k, stack=stack) for k in (0, 1, 2)
+    )
 
 
 def constant_value(

@@ -24,6 +24,7 @@ node does not draw (``contour=False``) are not part of its net.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -49,33 +50,25 @@ MEETING_FAMILY = "intersection"
 NEAR_PASSES = 0
 
 
+def _curves_of(s: Samples, families: Callable[[int], set[str]]) -> np.ndarray:
+    """Mask of the curves whose family is in ``families(node)``."""
+    out = np.zeros(len(s.t0), dtype=bool)
+    for batch, node, _, first in s.parts:
+        wanted = families(node)
+        names = batch.curve_family
+        if names is None:
+            out[first : first + len(batch)] = batch.family in wanted
+        else:
+            out[first : first + len(batch)] = [n in wanted for n in names]
+    return out
+
+
 def _net_curves(s: Samples, hiding: set[int], meetings: bool = True) -> np.ndarray:
     """Mask of the curves that belong to the sampled net: contours and
     boundaries of the nodes ``hiding``, and (``meetings``) the intersection
     curves of all."""
-    net = np.zeros(len(s.t0), dtype=bool)
     meet = {MEETING_FAMILY} if meetings else set()
-    for batch, node, _, first in s.parts:
-        families = (NET_FAMILIES | meet) if node in hiding else meet
-        names = batch.curve_family
-        if names is None:
-            if batch.family in families:
-                net[first : first + len(batch)] = True
-        else:
-            net[first : first + len(batch)] = [n in families for n in names]
-    return net
-
-
-def _family_curves(s: Samples, family: str) -> np.ndarray:
-    """Mask of the curves of ``family``."""
-    out = np.zeros(len(s.t0), dtype=bool)
-    for batch, _, _, first in s.parts:
-        names = batch.curve_family
-        if names is None:
-            out[first : first + len(batch)] = batch.family == family
-        else:
-            out[first : first + len(batch)] = [n == family for n in names]
-    return out
+    return _curves_of(s, lambda node: (NET_FAMILIES | meet) if node in hiding else meet)
 
 
 def chord_crossings(
@@ -312,7 +305,7 @@ def near_misses(
     # 1e-14 on both surfaces, and refining chords beside them to tiny lengths
     # lost the closed-form outline crossings that mark changes of depth)
     net = _net_curves(s, set(vis.twins), meetings=False)
-    contour = _family_curves(s, "contour")
+    contour = _curves_of(s, lambda _node: {"contour"})
     if not net.any():
         return none
     chord = np.flatnonzero(s.cid[1:] == s.cid[:-1])

@@ -148,17 +148,17 @@ class ParametricSurface(Surface):
         >>> s.point(0.0, 0.5).tolist()
         [1.25, 0.0, 0.0]
         """
-        from ..formula_maps import FormulaMap, constant_range, constants_dict
+        from ..formula_maps import constant_range, map_orders
 
-        texts, uv, c = (x, y, z), ("u", "v"), constants_dict(constants)
+        f, f1, f2 = map_orders((x, y, z), ("u", "v"), constants)
         return cls(
-            FormulaMap(texts, uv, c),
-            constant_range(u, c, "ParametricSurface.from_formulas: u"),
-            constant_range(v, c, "ParametricSurface.from_formulas: v"),
+            f,
+            constant_range(u, f.constants, "ParametricSurface.from_formulas: u"),
+            constant_range(v, f.constants, "ParametricSurface.from_formulas: v"),
             periodic=periodic,
             poles=poles,
-            derivatives_func=FormulaMap(texts, uv, c, order=1),
-            second_derivatives_func=FormulaMap(texts, uv, c, order=2),
+            derivatives_func=f1,
+            second_derivatives_func=f2,
         )
 
     def __attrs_post_init__(self) -> None:

@@ -83,16 +83,11 @@ class Profile:
         >>> [round(float(a), 12) for a in p(0.0)]
         [1.3, 0.0]
         """
-        from ..formula_maps import FormulaMap, constant_range, constants_dict
+        from ..formula_maps import constant_range, map_orders
 
-        texts, c = (rho, z), constants_dict(constants)
-        return cls(
-            FormulaMap(texts, ("t",), c, stack=False),
-            FormulaMap(texts, ("t",), c, order=1, stack=False),
-            FormulaMap(texts, ("t",), c, order=2, stack=False),
-            t_range=constant_range(t, c, "Profile.from_formulas: t"),
-            name="formula",
-        )
+        f, f1, f2 = map_orders((rho, z), ("t",), constants, stack=False)
+        t_range = constant_range(t, f.constants, "Profile.from_formulas: t")
+        return cls(f, f1, f2, t_range=t_range, name="formula")
 
     def __call__(self, t: Any) -> Any:
         return self.func(t)
