@@ -74,3 +74,18 @@ def sign_changes(g):
     with np.errstate(invalid="ignore"):
         margin = np.nanmin(np.where(turn, np.abs(g), np.inf), axis=1)
     return hit, margin
+
+
+def even_stations(xy, spacing, skip=2):
+    """Indices of samples of one polyline ``xy (n, 2)`` about ``spacing`` apart
+    along its length (the nearest sample at or after each station), leaving
+    out ``skip`` samples at each end.  Checks then weigh a curve evenly along
+    its length, however densely the renderer has sampled near contours and
+    transitions."""
+    if len(xy) <= 2 * skip:
+        return np.empty(0, dtype=np.int64)
+    arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
+    inner = arc[skip : len(xy) - skip]
+    stations = np.arange(inner[0], inner[-1] + 0.5 * spacing, spacing)
+    idx = np.searchsorted(inner, stations).clip(0, len(inner) - 1) + skip
+    return np.unique(idx)

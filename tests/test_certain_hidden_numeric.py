@@ -9,12 +9,11 @@ ends (the transitions themselves, located to 1e-12 of the span).
 The helicoid's pieces hidden beside a cusp of its contour (contour and line
 nearly parallel, 1e-4 apart in the image, the polylines not crossing) are
 found by the near-miss refinement of
-:func:`lgraph.render.crossings.seed_net_crossings`, which is off by default
-for now (it regressed other visibility tests): xfail by default, passing
-with it on.  Enneper's patch still fails where a line passes behind another
-sheet across the self-intersection curve.  The xfails must
-be made to pass, not forgotten (the helicoid's is not strict: in one of the
-two seeds' views no piece happens to escape)."""
+:func:`lgraph.render.crossings.seed_net_crossings`; the pieces of Enneper's
+lines hidden across the patch's self-intersection curve are found when that
+curve is drawn (``SelfIntersection``), which puts it into the net.  Two
+mutation checks show that each of these is needed: without it, pieces
+escape."""
 
 from __future__ import annotations
 
@@ -57,31 +56,18 @@ def _eye_rays(projector, x):
     return np.broadcast_to(projector.direction, x.shape), np.full(len(x), np.inf)
 
 
-NEAR_MISSES_OFF = pytest.mark.xfail(
-    strict=False,  # one of the two seeds' views happens to be drawn right
-    reason="the near-miss refinement that finds these pieces is off by default "
-    "(NEAR_PASSES = 0: it regressed the dense-ray agreement of other surfaces; issue #24)",
-)
-SELF_INTERSECTING = pytest.mark.xfail(
-    strict=True,
-    reason="not yet certain: where a line passes behind another sheet across the "
-    "surface's own self-intersection curve, that curve is not part of the net (issue #24)",
-)
-
-
-@pytest.mark.parametrize(
-    "name",
-    [
-        pytest.param("helicoid", marks=NEAR_MISSES_OFF),
-        pytest.param("enneper", marks=SELF_INTERSECTING),
-    ],
-)
-@pytest.mark.parametrize("seed", range(2))
-def test_no_hidden_piece_between_two_visible_samples(name, seed):
+def _escaped(name, seed, self_intersection):
+    """For each of the seed's views: how many points of the parameter lines,
+    between two samples of a visible stroke and away from its ends, the
+    surface's own ray test finds hidden."""
     surface = SURFACES[name]
     scene = lg.Scene()
-    scene.add(surface, lg.ParameterLines(10, 10))
+    families = [lg.ParameterLines(10, 10)]
+    if self_intersection:
+        families.append(lg.SelfIntersection())
+    scene.add(surface, *families)
     size = surface.size
+    out = []
     for projector in _views(seed):
         drawing = scene.render(projector, hidden_lines=True)
         lines = [s for s in drawing.strokes if s.family in ("u1", "u2") and s.visible]
@@ -99,19 +85,37 @@ def test_no_hidden_piece_between_two_visible_samples(name, seed):
         hidden = surface.hits(x, np.array(d), smax, np.full(len(x), ON, dtype=np.int8))
         # near a transition (the stroke's end) the ray grazes: not asked
         far = np.min(np.linalg.norm(x[:, None] - ends[None], axis=2), axis=1) > 1e-3 * size
-        bad = hidden & far
-        assert not bad.any(), f"{bad.sum()} hidden points drawn visible in view {projector}"
+        out.append(int((hidden & far).sum()))
+    return out
 
 
+@pytest.mark.parametrize("name", ["helicoid", "enneper"])
 @pytest.mark.parametrize("seed", range(2))
-def test_with_the_near_misses_the_helicoid_hides_its_pieces(monkeypatch, seed):
-    """With the near-miss refinement on (``NEAR_PASSES = 4``), the pieces the
-    helicoid hides beside its contour's cusps (contour and line 1e-4 apart,
-    the polylines not crossing) are found in every view above."""
+def test_no_hidden_piece_between_two_visible_samples(name, seed):
+    """Enneper's patch passes through itself: drawn with its
+    ``SelfIntersection``, that curve is part of the net."""
+    escaped = _escaped(name, seed, self_intersection=name == "enneper")
+    assert escaped == [0, 0, 0], f"hidden points drawn visible, per view: {escaped}"
+
+
+def test_mutation_without_near_misses_the_helicoid_shows_hidden_pieces(monkeypatch):
+    """Mutation check: with the near-miss refinement off (testing at the
+    samples and at crossings of the polylines only), pieces the helicoid
+    hides beside its contour's cusps are drawn visible."""
     import lgraph.render.crossings as crossings
 
-    monkeypatch.setattr(crossings, "NEAR_PASSES", 4)
-    test_no_hidden_piece_between_two_visible_samples("helicoid", seed)
+    monkeypatch.setattr(crossings, "NEAR_PASSES", 0)
+    assert sum(_escaped("helicoid", 0, self_intersection=False)) > 0
+
+
+def test_mutation_without_the_self_intersection_in_the_net_pieces_escape(monkeypatch):
+    """Mutation check: the self-intersection curve drawn but left out of the
+    net, pieces of Enneper's lines hidden across it are drawn visible (as
+    they are when ``SelfIntersection`` is not drawn: docs/mathematics.rst)."""
+    import lgraph.render.crossings as crossings
+
+    monkeypatch.setattr(crossings, "SELF_MEETING_FAMILY", "not a family")
+    assert sum(_escaped("enneper", 0, self_intersection=True)) > 0
 
 
 def test_sagittas_bound_the_distance_of_a_circle_from_its_chords():

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from bruteforce import sign_changes
+from bruteforce import even_stations, sign_changes
 
 import lgraph as lg
 from lgraph._own import ON
@@ -69,21 +69,23 @@ def test_drawn_visibility_agrees_with_a_dense_ray_march(name, pname):
     scene = lg.Scene()
     scene.add(surface, lg.LinesOfCurvature(10, 16))
     d = scene.render(projector, hidden_lines=True)
-    pts, hidden = [], []
-    for s in d.strokes:
-        inner = s.xyz[2:-2]  # away from the flips that end the stroke
-        pts.append(inner)
-        hidden.append(np.full(len(inner), not s.visible))
-    x, hid = np.concatenate(pts), np.concatenate(hidden)
+    # points evenly along the strokes (the renderer samples densely near
+    # contours), away from the flips that end each stroke
+    x0, y0, x1, y1 = d.bounds()
+    spacing = 2e-3 * np.hypot(x1 - x0, y1 - y0)
+    picks = [even_stations(s.xy, spacing) for s in d.strokes]
+    x = np.concatenate([s.xyz[i] for s, i in zip(d.strokes, picks)])
+    hid = np.concatenate([np.full(len(i), not s.visible) for s, i in zip(d.strokes, picks)])
     v, smax = projector.rays(x)
     speed = np.linalg.norm(v, axis=1)
     ref, margin = _march(name, x, v / speed[:, None], smax * speed)
     # rays leaving their point almost tangentially are fragile for the march
-    uv = np.concatenate([s.uv[2:-2] for s in d.strokes])
+    uv = np.concatenate([s.uv[i] for s, i in zip(d.strokes, picks)])
     n = surface.normal(uv[:, 0], uv[:, 1])
     grazing = np.abs(np.einsum("ij,ij->i", n, v / speed[:, None])) < 0.02
     clear = (margin > 5e-3) & ~grazing
-    assert clear.sum() > 0.8 * len(x) and len(x) > 1000
+    # most points are checked (the pseudosphere's rim grazes many rays)
+    assert clear.sum() > 0.7 * len(x) and clear.sum() > 1000, (clear.mean(), len(x))
     bad = np.flatnonzero(clear & (ref != hid))
     assert not len(bad), (name, pname, x[bad[:5]], hid[bad[:5]])
     assert hid.sum() > 100 and (~hid).sum() > 100

@@ -1,15 +1,20 @@
 """Candidate points of visibility change: 2-D crossings of every curve with the projected net.
 
 Along a curve, visibility can change only where its projection crosses the
-projection of a contour or of a patch boundary of a hiding surface (or where
-it meets its own surface's contour, which the ray tests of its own surface
+projection of a contour or of a patch boundary of a hiding surface, or of
+a curve where two surfaces meet or a surface meets itself (or where it
+meets its own surface's contour, which the ray tests of its own surface
 follow).  The *net* is the sampled contours and boundaries of the hiding
-nodes in each view.  Where one chord of a curve is crossed by the net two or
-more times, a short hidden (or visible) piece may lie wholly between its two
-samples; ``seed_net_crossings`` inserts one sample between every two
-consecutive crossings of such a chord, so that every interval between
-candidates carries a tested sample and ``locate_flips`` (:mod:`lgraph.render.flips`)
-finds both of its ends.
+nodes in each view, the intersection curves, and the self-intersection
+curves of the nodes that draw them (``SelfIntersection``).  Where one
+chord of a curve is crossed by the net two or more times, a short hidden
+(or visible) piece may lie wholly between its two samples;
+``seed_net_crossings`` inserts one sample between every two consecutive
+crossings of such a chord, so that every interval between candidates
+carries a tested sample and ``locate_flips`` (:mod:`lgraph.render.flips`)
+finds both of its ends.  Chords that pass near their own surface's contour
+without crossing it are refined until they cross or part
+(:func:`near_misses`).
 
 For the grouped ellipsoids the net is exact: their outlines are conics in
 the image (``Occlusion.outlines``), crossed
@@ -18,7 +23,8 @@ only with the outlines that meet its own (the image of a convex solid is
 convex), which keeps the work near the number of chords that matter.  For
 every other surface the crossings are those of the polylines (each chord
 within the chord tolerance of its curve): an interval shorter than the chord
-tolerance of the figure may still be missed there, and contours that such a
+tolerance of the figure, behind another node's contour, may still be missed
+there (docs/mathematics.rst says precisely what), and contours that such a
 node does not draw (``contour=False``) are not part of its net.
 """
 
@@ -41,13 +47,12 @@ __all__ = ["NET_FAMILIES", "near_misses", "net_crossings", "seed_net_crossings"]
 NET_FAMILIES = frozenset({"contour", "boundary"})
 #: where a curve enters another surface's solid: part of the net of every node
 MEETING_FAMILY = "intersection"
+#: where a surface passes through itself: part of the net of its node when drawn
+SELF_MEETING_FAMILY = "self_intersection"
 #: passes of refining chords that pass near their own surface's contour
-#: without crossing it (:func:`near_misses`).  0, off, for now: with 4 it
-#: finds the pieces a helicoid hides beside its contour's cusps, but the
-#: visibility of surfaces of revolution and of some parametric surfaces then
-#: agrees less with dense ray marching (tests/test_revolution_visibility.py,
-#: tests/test_visibility.py, tests/test_parametric.py): to be understood first
-NEAR_PASSES = 0
+#: without crossing it (:func:`near_misses`): the pieces a helicoid hides
+#: beside its contour's cusps, where line and contour run 1e-4 apart
+NEAR_PASSES = 4
 
 
 def _curves_of(s: Samples, families: Callable[[int], set[str]]) -> np.ndarray:
@@ -66,8 +71,8 @@ def _curves_of(s: Samples, families: Callable[[int], set[str]]) -> np.ndarray:
 def _net_curves(s: Samples, hiding: set[int], meetings: bool = True) -> np.ndarray:
     """Mask of the curves that belong to the sampled net: contours and
     boundaries of the nodes ``hiding``, and (``meetings``) the intersection
-    curves of all."""
-    meet = {MEETING_FAMILY} if meetings else set()
+    and self-intersection curves of all."""
+    meet = {MEETING_FAMILY, SELF_MEETING_FAMILY} if meetings else set()
     return _curves_of(s, lambda node: (NET_FAMILIES | meet) if node in hiding else meet)
 
 
