@@ -56,8 +56,8 @@ def _eye_rays(projector, x):
     return np.broadcast_to(projector.direction, x.shape), np.full(len(x), np.inf)
 
 
-def _escaped(name, seed, self_intersection):
-    """For each of the seed's views: how many points of the parameter lines,
+def _escaped(name, seed, self_intersection, views=None):
+    """For each of the seed's views (or those at ``views``): how many points of the parameter lines,
     between two samples of a visible stroke and away from its ends, the
     surface's own ray test finds hidden."""
     surface = SURFACES[name]
@@ -68,7 +68,8 @@ def _escaped(name, seed, self_intersection):
     scene.add(surface, *families)
     size = surface.size
     out = []
-    for projector in _views(seed):
+    chosen = _views(seed)
+    for projector in chosen if views is None else [chosen[k] for k in views]:
         drawing = scene.render(projector, hidden_lines=True)
         lines = [s for s in drawing.strokes if s.family in ("u1", "u2") and s.visible]
         assert lines
@@ -105,7 +106,7 @@ def test_mutation_without_near_misses_the_helicoid_shows_hidden_pieces(monkeypat
     import lgraph.render.crossings as crossings
 
     monkeypatch.setattr(crossings, "NEAR_PASSES", 0)
-    assert sum(_escaped("helicoid", 0, self_intersection=False)) > 0
+    assert sum(_escaped("helicoid", 0, self_intersection=False, views=[1])) > 0
 
 
 def test_mutation_without_the_self_intersection_in_the_net_pieces_escape(monkeypatch):
@@ -115,7 +116,7 @@ def test_mutation_without_the_self_intersection_in_the_net_pieces_escape(monkeyp
     import lgraph.render.crossings as crossings
 
     monkeypatch.setattr(crossings, "SELF_MEETING_FAMILY", "not a family")
-    assert sum(_escaped("enneper", 0, self_intersection=True)) > 0
+    assert sum(_escaped("enneper", 0, self_intersection=True, views=[0])) > 0
 
 
 def test_sagittas_bound_the_distance_of_a_circle_from_its_chords():
