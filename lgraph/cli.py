@@ -378,7 +378,7 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument(
         "--only", nargs="*", default=None, help="only figures whose name contains one of these"
     )
-    g.set_defaults(func=_gallery)
+    g.set_defaults(func=_gallery, stoppable=True)
     pl = sub.add_parser(
         "plugins", help="list the surfaces, line families and backends, and installed plugins"
     )
@@ -402,8 +402,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     from .plugins import PluginError
 
     prefix = f"lgraph {args.command}: error:"
-    # render, animate, demo: a SIGTERM or SIGHUP stops them cleanly (the
-    # gallery keeps going past a failing figure: there the signal ends it)
+    # render, animate, demo, gallery: a SIGTERM or SIGHUP stops them cleanly
     stoppable = getattr(args, "stoppable", False)
     try:
         with signals_as_exception(take_default=False) if stoppable else nullcontext():

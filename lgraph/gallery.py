@@ -51,6 +51,8 @@ from typing import Any, TextIO
 import attrs
 import numpy as np
 
+from ._atomic import Terminated, signals_as_exception, stop_pool, worker_setup
+
 __all__ = [
     "build_gallery",
     "default_gallery_dir",
@@ -295,6 +297,8 @@ def _build_one(path: str, outdir: str, tolerance: float | None) -> dict[str, Any
         if spec:
             _animate(result, dict(spec), Path(outdir) / f"{stem}.gif")
             info["animation"] = True
+    except (KeyboardInterrupt, Terminated):  # a stop of the whole gallery
+        raise
     except BaseException:  # noqa: BLE001 - report everything, keep going
         info["error"] = traceback.format_exc()
     info["seconds"] = time.perf_counter() - t0
@@ -397,6 +401,38 @@ def write_index(outdir: Path, items: Sequence[dict[str, Any]]) -> Path:
 
 
 # -- the command ----------------------------------------------------------------
+def _build_in_pool(
+    scripts: Sequence[Path],
+    outdir: str,
+    tolerance: float | None,
+    jobs: int,
+    report: Callable[[dict[str, Any]], None],
+) -> None:
+    """Build the figures in ``jobs`` worker processes, reporting each as it
+    ends; on a stop (Ctrl-C, a stop signal) the workers are ended at once."""
+    pool = ProcessPoolExecutor(max_workers=jobs, initializer=worker_setup)
+    try:
+        futures = {pool.submit(_build_one, str(p), outdir, tolerance): p for p in scripts}
+        for fut in as_completed(futures):
+            p = futures[fut]
+            try:
+                info = fut.result()
+            except (KeyboardInterrupt, Terminated):
+                raise
+            except BaseException:  # noqa: BLE001 - a worker died (e.g. killed)
+                info = {
+                    "stem": p.stem,
+                    "caption": None,
+                    "seconds": 0.0,
+                    "error": traceback.format_exc(),
+                }
+            report(info)
+    except BaseException:
+        stop_pool(pool)
+        raise
+    pool.shutdown()
+
+
 def build_gallery(
     outdir: str | os.PathLike[str],
     jobs: int | None = None,
@@ -457,24 +493,14 @@ def build_gallery(
             print(info["error"].rstrip(), file=out)
         out.flush()
 
-    if jobs == 1:
-        for p in scripts:
-            report(_build_one(str(p), str(outdir), tolerance))
-    else:
-        with ProcessPoolExecutor(max_workers=jobs) as pool:
-            futures = {pool.submit(_build_one, str(p), str(outdir), tolerance): p for p in scripts}
-            for fut in as_completed(futures):
-                p = futures[fut]
-                try:
-                    info = fut.result()
-                except BaseException:  # noqa: BLE001 - a worker died (e.g. killed)
-                    info = {
-                        "stem": p.stem,
-                        "caption": None,
-                        "seconds": 0.0,
-                        "error": traceback.format_exc(),
-                    }
-                report(info)
+    # a SIGTERM or SIGHUP stops the gallery (not only the figure under way):
+    # the figure's file is not half written, the workers are ended
+    with signals_as_exception():
+        if jobs == 1:
+            for p in scripts:
+                report(_build_one(str(p), str(outdir), tolerance))
+        else:
+            _build_in_pool(scripts, str(outdir), tolerance, jobs, report)
 
     items = []
     for p in scripts:

@@ -794,3 +794,93 @@ def test_a_file_name_too_long_is_refused_naming_the_users_file(tmp_path: Path, c
                    tmp_path / _long_name(tmp_path, limit + 1, ".gif"), width=32,
                    progress=False)  # fmt: skip
     assert sorted(p.name for p in tmp_path.iterdir()) == before
+
+
+GALLERY_SCRIPT = """
+import sys
+sys.path.insert(0, {root!r})
+from lgraph.gallery import build_gallery
+
+build_gallery({out!r}, jobs={jobs}, source_dir={src!r})
+"""
+
+SLOW_FIGURE = '''
+"""A figure that takes its time."""
+import pathlib, time
+import lgraph as lg
+
+
+def build():
+    pathlib.Path({mark!r}).write_text("started")
+    time.sleep(120)
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1))
+    return scene, lg.ParallelProjector(direction=(1, 2, 3))
+'''
+
+
+@POSIX
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_stop_signal_ends_the_gallery_and_its_workers(tmp_path: Path, jobs: int) -> None:
+    """The gallery does not take a stop for a failing figure and go on: the
+    signal ends it (its default action, from a program), workers included."""
+    src, out = tmp_path / "src", tmp_path / "out"
+    src.mkdir()
+    for k in range(2):
+        mark = tmp_path / f"started{k}"
+        (src / f"slow_{k}.py").write_text(SLOW_FIGURE.format(mark=str(mark)))
+    code = GALLERY_SCRIPT.format(root=str(ROOT), out=str(out), jobs=jobs, src=str(src))
+    with open(tmp_path / "stderr.txt", "w") as err:
+        proc = subprocess.Popen([sys.executable, "-c", textwrap.dedent(code)], stderr=err)
+    procs: dict[int, Any] = {}
+    try:
+        deadline = time.monotonic() + 60
+        while not any(tmp_path.glob("started*")):
+            assert proc.poll() is None, (tmp_path / "stderr.txt").read_text()
+            assert time.monotonic() < deadline, "no figure started in time"
+            time.sleep(0.02)
+        procs = _descendants(proc.pid)
+        proc.send_signal(signal.SIGTERM)
+        rc = proc.wait(timeout=30)
+        left = _wait_gone(procs, timeout=3)  # ended, not left to finish their figure
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        _kill(procs)
+    assert rc == -signal.SIGTERM, (tmp_path / "stderr.txt").read_text()
+    assert left == [], f"worker processes left running: {left}"
+    assert not (out / "index.html").exists()  # it stopped, it did not go on
+
+
+@POSIX
+def test_lgraph_gallery_stops_on_a_signal_with_the_shells_status(tmp_path: Path) -> None:
+    """``lgraph gallery`` under SIGTERM: exit status 143 and one line, as the
+    other commands (not a figure reported failed and the next one begun)."""
+    cmd = [sys.executable, "-m", "lgraph", "gallery", str(tmp_path / "out"),
+           "--jobs", "2", "--only", "fig_7_1", "fig_7_3"]  # fmt: skip
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    with open(tmp_path / "stderr.txt", "w") as err, open(tmp_path / "stdout.txt", "w") as out:
+        proc = subprocess.Popen(cmd, env=env, stderr=err, stdout=out)
+    procs: dict[int, Any] = {}
+    try:
+        deadline = time.monotonic() + 60
+        while "building" not in (tmp_path / "stdout.txt").read_text():
+            assert proc.poll() is None, (tmp_path / "stderr.txt").read_text()
+            assert time.monotonic() < deadline, "the gallery did not start in time"
+            time.sleep(0.02)
+        time.sleep(0.5)  # the workers are at their figures
+        procs = _descendants(proc.pid)
+        proc.send_signal(signal.SIGTERM)
+        rc = proc.wait(timeout=30)
+        left = _wait_gone(procs, timeout=3)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        _kill(procs)
+    stderr = (tmp_path / "stderr.txt").read_text()
+    assert rc == 128 + signal.SIGTERM, stderr
+    assert "lgraph gallery: terminated by SIGTERM" in stderr
+    assert "Traceback" not in stderr
+    assert left == [], f"worker processes left running: {left}"
