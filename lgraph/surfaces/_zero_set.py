@@ -33,6 +33,9 @@ EDGE_XTOL = 1e-15
 #: ... or until ``|fun|`` is below this times the largest ``|fun|`` on the grid
 #: (its rounding level: the zero set is not defined more closely)
 EDGE_FTOL = 4 * np.finfo(float).eps
+#: a refined crossing with ``|fun|`` above this times its largest ``|fun|`` on
+#: the grid is a jump of ``fun``, not a zero (left out of the zero set)
+JUMP_RTOL = 1e-6
 
 
 def _grid_axis(surface: Surface, i: int, n: int) -> np.ndarray:
@@ -150,6 +153,15 @@ def zero_set(
     # the rounding level of fun: a few units in the last place of its largest value
     ftol = EDGE_FTOL * float(np.abs(F).max())
     pts = _edge_roots(fun_p, pa, pb, F[i0, j0], F[i1, j1], ftol)
+    # a sign change that is no zero: ``fun`` jumps there (the normal of a
+    # parametrization that folds over a degenerate line, such as the edge of
+    # Apery's Boy surface that collapses to a point, flips with the
+    # orientation) or is undefined (NaN, counted as 0 on the grid).  The
+    # root search ends at the jump with ``|fun|`` still of the order of its
+    # values; a true zero is refined to the rounding level
+    real = np.abs(fun_p(pts)) <= JUMP_RTOL * float(np.abs(F).max())
+    keep = real[index[sa]] & real[index[sb]]
+    sa, sb = sa[keep], sb[keep]
     m = len(ids)
     A = coo_matrix((np.ones(len(sa)), (index[sa], index[sb])), shape=(m, m)).tocsr()
     A = A + A.T
