@@ -14,7 +14,7 @@ crossings of such a chord, so that every interval between candidates
 carries a tested sample and ``locate_flips`` (:mod:`lgraph.render.flips`)
 finds both of its ends.  Chords that pass near their own surface's contour
 without crossing it are refined until they cross or part
-(:func:`near_misses`).
+(``near_misses``).
 
 For the grouped ellipsoids the net is exact: their outlines are conics in
 the image (``Occlusion.outlines``), crossed
@@ -50,7 +50,7 @@ MEETING_FAMILY = "intersection"
 #: where a surface passes through itself: part of the net of its node when drawn
 SELF_MEETING_FAMILY = "self_intersection"
 #: passes of refining chords that pass near their own surface's contour
-#: without crossing it (:func:`near_misses`): the pieces a helicoid hides
+#: without crossing it (``near_misses``): the pieces a helicoid hides
 #: beside its contour's cusps, where line and contour run 1e-4 apart
 NEAR_PASSES = 4
 
@@ -247,7 +247,7 @@ def seed_net_crossings(
     consecutive crossings (so that the interval between them is tested).
 
     With ``near`` (per view: twice the chord tolerance), chords that a net
-    chord passes within ``near`` of without crossing it (:func:`near_misses`)
+    chord passes within ``near`` of without crossing it (``near_misses``)
     are refined too, both of them: the true curves, each within the chord
     tolerance of its polyline, may cross there twice (a piece hidden by a
     fold or beside a cusp of a contour, along which the two run nearly
