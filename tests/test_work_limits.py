@@ -344,3 +344,21 @@ def test_the_limits_page_lists_the_work_limits() -> None:
         assert f"``{name}" in page, name
         assert f"``{getattr(tol, name)}``" in page, name
     assert "Formulas" in page
+
+
+def test_the_point_budget_names_the_family_and_node_that_cost(monkeypatch):
+    """A render over the point budget says which family of which node needs
+    the samples (issue #25: a numeric contour's cost was blamed on "the
+    lines"), before sampling it."""
+    from lgraph import _tolerance
+    from lgraph.render.sampling import PointBudgetError
+
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(2, 2))
+    wiggle = lg.Curve(lambda t: np.stack([t, 0.05 * np.sin(377 * t), 2 + 0 * t], -1), -1.0, 1.0)
+    scene.add(wiggle)
+    monkeypatch.setattr(_tolerance, "MAX_POINTS", 1500)  # the wiggle needs about 2200
+    with pytest.raises(PointBudgetError) as info:
+        scene.render(lg.ParallelProjector(direction=(0, 0, 1)))
+    message = str(info.value)
+    assert "family 'curve' of node 1" in message and "raise tolerance" in message

@@ -291,7 +291,7 @@ class PointBudgetError(ValueError):
     """A render would hold more than ``MAX_POINTS`` sample points."""
 
 
-def check_points(n: int, refining: bool = False) -> None:
+def check_points(n: int, refining: bool = False, culprit: str = "") -> None:
     """Refuse, before any work, a sampling that would hold more than
     ``MAX_POINTS`` points (the render's memory budget).
 
@@ -307,9 +307,29 @@ def check_points(n: int, refining: bool = False) -> None:
             else "draw fewer lines (lower the counts of the families)"
         )
         raise PointBudgetError(
-            f"Scene.render: the curves need {n} sample points; the limit is "
+            f"Scene.render: the curves need {n} sample points{culprit}; the limit is "
             f"{tol.MAX_POINTS} (lgraph._tolerance.MAX_POINTS); {why}"
         )
+
+
+def _culprit(s: Samples, idx: np.ndarray, m: np.ndarray) -> str:
+    """Which family of which node the split of chords ``idx`` into ``m``
+    parts each would add most samples to, for the budget's message."""
+    added = np.bincount(s.part[s.cid[idx]], weights=m - 1, minlength=len(s.parts))
+    p = int(np.argmax(added))
+    batch, node, _, first = s.parts[p]
+    names = batch.curve_family
+    family = batch.family
+    if names is not None:  # the family of most of the part's new samples
+        rows = s.cid[idx][s.part[s.cid[idx]] == p] - first
+        fams, counts = np.unique(np.asarray(names, dtype=object)[rows], return_counts=True)
+        family = str(fams[np.argmax(counts)])
+    what = type(batch.surface).__name__ if batch.surface is not None else "a free curve"
+    share = added[p] / max(added.sum(), 1)
+    knob = "; contour=False on that node leaves its contour out" if family == "contour" else ""
+    return (
+        f" ({100 * share:.0f} % of the new ones for family {family!r} of node {node}, {what}{knob})"
+    )
 
 
 def _predicted_deviation(xy: np.ndarray, cid: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -343,7 +363,9 @@ def _split(s: Samples, idx: np.ndarray, dev: np.ndarray, abs_tol: float | np.nda
     with np.errstate(invalid="ignore"):
         m = np.ceil(1.05 * np.sqrt(dev / _at(abs_tol, s.cid[idx])))
     m = np.clip(np.nan_to_num(m, nan=2.0), 2, tol.MAX_SPLIT).astype(np.int64)
-    check_points(len(s.t) + int(m.sum() - len(m)), refining=True)
+    total = len(s.t) + int(m.sum() - len(m))
+    if total > tol.MAX_POINTS:
+        check_points(total, refining=True, culprit=_culprit(s, idx, m))
     after = np.repeat(idx, m - 1)
     j = np.arange(len(after)) - np.repeat(np.cumsum(m - 1) - (m - 1), m - 1) + 1
     frac = j / np.repeat(m, m - 1)
