@@ -17,7 +17,10 @@ root (a ray tangent to the surface) counts 0, as it should for hidden
 lines.  It is exact for the floating-point coefficients whenever the roots
 are more than ``2**-40 (hi - lo)`` apart and no Bernstein coefficient is
 within rounding error of zero (a root within rounding error of an end of
-the interval or of a split point).
+the interval or of a split point).  Two simple roots closer than about
+``1e-8`` of the interval are a case of the latter: between them ``|p|`` is
+below the coefficients' rounding, and the floating-point polynomial may
+well have a complex pair there instead (then it is counted as such).
 
 >>> import numpy as np
 >>> q = np.array([[2.0, -3.0, 1.0]])  # (s - 1)(s - 2)

@@ -178,9 +178,7 @@ class Polynomial:
 
     def terms(self) -> dict[tuple[int, int, int], float]:
         """The non-zero coefficients ``{(i, j, k): c}``."""
-        return {
-            (int(i), int(j), int(k)): float(self.c[i, j, k]) for i, j, k in np.argwhere(self.c)
-        }
+        return {(int(i), int(j), int(k)): float(self.c[i, j, k]) for i, j, k in np.argwhere(self.c)}
 
     def _powers(self, p: np.ndarray) -> list[np.ndarray]:
         e = np.arange(self.degree + 1)
@@ -214,9 +212,9 @@ class Polynomial:
         n, d = len(o), self.degree
         out = np.empty((n, d + 1))
         e = np.arange(d + 1)
-        I, A = np.meshgrid(e, e, indexing="ij")  # power i of an axis, power a of s
-        C = np.where(A <= I, np.array([[comb(i, a) for a in e] for i in e], float), 0.0)
-        tri = A <= I
+        Ii, A = np.meshgrid(e, e, indexing="ij")  # power i of an axis, power a of s
+        C = np.where(A <= Ii, np.array([[comb(i, a) for a in e] for i in e], float), 0.0)
+        tri = A <= Ii
         total = np.add.outer(np.add.outer(e, e), e).ravel()
         gather = (total[:, None] == e[None, :]).astype(float)  # a + b + c = p
         for start in range(0, n, RAY_CHUNK):
@@ -225,7 +223,7 @@ class Polynomial:
             for axis in range(3):
                 op = o[sl, axis, None] ** e
                 vp = v[sl, axis, None] ** e
-                P.append(np.where(tri, C * op[:, np.maximum(I - A, 0)] * vp[:, A], 0.0))
+                P.append(np.where(tri, C * op[:, np.maximum(Ii - A, 0)] * vp[:, A], 0.0))
             t = np.einsum("ijk,nkc->nijc", self.c, P[2])
             t = np.einsum("nijc,njb->nibc", t, P[1])
             t = np.einsum("nibc,nia->nabc", t, P[0])

@@ -267,7 +267,11 @@ class RomanSteiner(AlgebraicSurface):
 
     def __attrs_post_init__(self) -> None:
         r = self.r
-        if isinstance(r, bool) or not isinstance(r, (int, float)) or not (math.isfinite(r) and r > 0):
+        if (
+            isinstance(r, bool)
+            or not isinstance(r, (int, float))
+            or not (math.isfinite(r) and r > 0)
+        ):
             raise ValueError(f"RomanSteiner: r must be a positive finite number, got {r!r}")
         object.__setattr__(self, "polynomial", f"x^2*y^2 + y^2*z^2 + z^2*x^2 - {float(r)!r}*x*y*z")
         if self.radius is None and self.bounds_ is None:
@@ -296,4 +300,3 @@ class GoursatSurface(AlgebraicSurface):
         poly = f"x^4 + y^4 + z^4 + {a!r}*(x^2 + y^2 + z^2)^2 + {b!r}*(x^2 + y^2 + z^2) + {c!r}"
         object.__setattr__(self, "polynomial", poly)
         super().__attrs_post_init__()
-

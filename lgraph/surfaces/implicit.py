@@ -116,7 +116,10 @@ class ImplicitSurface(Surface):
 
     F: Callable[..., Any] = attrs.field(validator=_callable("ImplicitSurface"))
     bounds_: tuple[tuple[float, float], ...] | None = attrs.field(
-        default=None, kw_only=True, alias="bounds", converter=lambda v: _bounds("ImplicitSurface", v)
+        default=None,
+        kw_only=True,
+        alias="bounds",
+        converter=lambda v: _bounds("ImplicitSurface", v),
     )
     radius: float | None = attrs.field(
         default=None, kw_only=True, validator=_optional_positive("ImplicitSurface")
@@ -141,7 +144,11 @@ class ImplicitSurface(Surface):
         name = type(self).__name__
         if (self.bounds_ is None) == (self.radius is None):
             raise ValueError(f"{name}: give exactly one of bounds or radius")
-        if isinstance(self.grid, bool) or not isinstance(self.grid, int) or not 9 <= self.grid <= 129:
+        if (
+            isinstance(self.grid, bool)
+            or not isinstance(self.grid, int)
+            or not 9 <= self.grid <= 129
+        ):
             raise ValueError(f"{name}: grid must be an integer from 9 to 129, got {self.grid!r}")
         if self.radius is not None:
             r = float(self.radius)
@@ -402,4 +409,3 @@ def _planes(normals: np.ndarray, offsets: np.ndarray) -> Any:
         return np.einsum("ij,ij->i", x, n) - offsets[idx], n
 
     return gg
-
