@@ -337,6 +337,7 @@ def _builtin_families() -> dict[str, Any]:
         level,
         parabolic,
         self_intersection,  # noqa: F401
+        singular,  # noqa: F401
     )
 
     return FAMILIES

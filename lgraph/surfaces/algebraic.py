@@ -39,6 +39,8 @@ from .implicit import ImplicitSurface
 __all__ = ["AlgebraicSurface", "CayleyCubic", "ClebschCubic", "KummerSurface"]
 __all__ += ["RomanSteiner", "GoursatSurface"]
 
+#: the search grid's work: its nodes times the terms of a dense polynomial
+MAX_GRID_WORK = 1e9
 #: an origin with |F| below this fraction of its terms' magnitudes lies on the surface
 ON_SURFACE_RTOL = 1e-12
 
@@ -64,6 +66,7 @@ class AlgebraicSurface(ImplicitSurface):
     hit_call_cost: ClassVar[float] = 3000.0
 
     polynomial: Any = attrs.field(default=None)
+    constants: Any = attrs.field(default=None, kw_only=True)
     F: Any = attrs.field(init=False, default=None)
     gradient: Any = attrs.field(init=False, default=None)
     hessian: Any = attrs.field(init=False, default=None)
@@ -74,9 +77,16 @@ class AlgebraicSurface(ImplicitSurface):
         name = type(self).__name__
         if self.polynomial is None:
             raise TypeError(f"{name}: polynomial is required (a formula or {{(i, j, k): c}})")
-        poly = Polynomial.from_source(self.polynomial, name, "polynomial")
+        poly = Polynomial.from_source(self.polynomial, name, "polynomial", constants=self.constants)
         if poly.degree < 1:
             raise ValueError(f"{name}: polynomial must not be constant, got {self.polynomial!r}")
+        grid = self.grid if isinstance(self.grid, int) else 0
+        if grid**3 * (poly.degree + 1) ** 3 > MAX_GRID_WORK:
+            most = int((MAX_GRID_WORK / (poly.degree + 1) ** 3) ** (1 / 3))
+            raise ValueError(
+                f"{name}: grid must be at most {most} for degree {poly.degree} (grid^3 x "
+                f"(degree + 1)^3 at most {MAX_GRID_WORK:.0e}), got {self.grid!r}"
+            )
         object.__setattr__(self, "poly", poly)
         object.__setattr__(self, "F", _PolyF(poly))
         super().__attrs_post_init__()
