@@ -18,8 +18,8 @@ from ._errors import Key, _Collect, _fail, _Invalid
 from ._formulas import (
     ALGEBRAIC,
     PARAMETRIC,
-    algebraic_surface,
     REVOLUTION,
+    algebraic_surface,
     level_function,
     parametric_surface,
     revolution_surface,

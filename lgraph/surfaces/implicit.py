@@ -327,6 +327,46 @@ class ImplicitSurface(Surface):
         on_grid = (X @ d)[None, :] - values[:, None]
         return self._curves("level", _planes(normals, values), on_grid)
 
+    def meeting_curves(self, other: Any, placement: Any) -> list[CurveBatch]:
+        """The curves where this surface meets ``other`` (whose local
+        coordinates ``placement`` maps into this surface's), family
+        ``"intersection"``: ``F = 0, G = 0`` with ``G`` the other's implicit
+        equation (numeric gradient), traced like the contour.  Only surfaces
+        with an equation that bound a solid (sphere, ellipsoid, torus, ...)
+        or are implicit themselves (then cut to their clip region too, the
+        ends there to the tracing step); for others nothing is drawn, with a
+        warning."""
+        import warnings
+
+        G = getattr(other, "implicit", None)
+        closed = G is not None and (
+            not getattr(other, "parametric", True) or other._solid() is not None
+        )
+        if not closed:
+            warnings.warn(
+                f"{type(self).__name__}: the intersection with {type(other).__name__} is not "
+                "drawn (implicit surfaces meet closed or implicit surfaces only)",
+                stacklevel=2,
+            )
+            return []
+        back = placement.inverse()
+        h = FD_STEP * self.clip.size
+
+        def gval(x: np.ndarray) -> np.ndarray:
+            with np.errstate(all="ignore"):
+                return np.asarray(G(back.apply(x)), float)
+
+        def gg(x: np.ndarray, _idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            f = gval(x[..., None, :] + h * _STENCIL1)
+            return gval(x), f @ _W1 / h
+
+        grid = self._search()
+        curves = trace_curves(self._fg, gg, self.clip, grid, gval(grid["x"]), grid["clip"])
+        other_clip = getattr(other, "clip", None)
+        if other_clip is not None:
+            curves = _inside_runs(curves, lambda x: other_clip.excess(back.apply(x))[0] <= 0)
+        return curve_batch(self, "intersection", curves, self._fg, gg)
+
     # -- what it hides -------------------------------------------------------------
     def hits(
         self,
@@ -382,6 +422,21 @@ class ImplicitSurface(Surface):
     def describe(self) -> str:
         where = f"radius {self.radius:g}" if self.radius is not None else f"bounds {self.bounds_}"
         return f"{type(self).__name__} ({where})"
+
+
+def _inside_runs(curves: list, inside: Any) -> list:
+    """The runs of each traced curve's points where ``inside`` holds."""
+    out = []
+    for pts, closed, k in curves:
+        m = inside(pts)
+        if m.all():
+            out.append((pts, closed, k))
+            continue
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], m.astype(int), [0]])))
+        for a, b in zip(edges[::2], edges[1::2]):
+            if b - a >= 2:
+                out.append((pts[a:b], False, k))
+    return out
 
 
 def _stencils() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
