@@ -147,6 +147,8 @@ class Polynomial:
         k = np.arange(d + 1, dtype=float)
         self.d1 = [self._diff(self.c, i, k) for i in range(3)]
         self.d2 = [[self._diff(self.d1[i], j, k) for j in range(3)] for i in range(3)]
+        self._first = np.stack([self.c, *self.d1])
+        self._second = np.stack([self.d2[i][j] for i in range(3) for j in range(i, 3)])
 
     @staticmethod
     def _diff(c: np.ndarray, axis: int, k: np.ndarray) -> np.ndarray:
@@ -181,29 +183,43 @@ class Polynomial:
         return {(int(i), int(j), int(k)): float(self.c[i, j, k]) for i, j, k in np.argwhere(self.c)}
 
     def _powers(self, p: np.ndarray) -> list[np.ndarray]:
-        e = np.arange(self.degree + 1)
-        return [p[..., i, None] ** e for i in range(3)]
+        """``x^0 .. x^d`` for each coordinate (products, not ``pow``)."""
+        out = []
+        for i in range(3):
+            P = np.empty(p.shape[:-1] + (self.degree + 1,))
+            P[..., 0] = 1.0
+            for k in range(1, self.degree + 1):
+                P[..., k] = P[..., k - 1] * p[..., i]
+            out.append(P)
+        return out
 
     def _eval(self, c: np.ndarray, P: list[np.ndarray]) -> np.ndarray:
-        t = np.einsum("ijk,...k->...ij", c, P[2])
-        t = np.einsum("...ij,...j->...i", t, P[1])
-        return np.einsum("...i,...i->...", t, P[0])
+        """Polynomials ``c`` (``(m, d+1, d+1, d+1)``) at the points of the
+        power tables ``P``: ``(..., m)``."""
+        t = np.einsum("mijk,...k->...mij", c, P[2])
+        t = np.einsum("...mij,...j->...mi", t, P[1])
+        return np.einsum("...mi,...i->...m", t, P[0])
 
     def value(self, p: Any) -> np.ndarray:
         """Values at points ``(..., 3)``."""
-        p = np.asarray(p, float)
-        return self._eval(self.c, self._powers(p))
+        P = self._powers(np.asarray(p, float))
+        return self._eval(self.c[None], P)[..., 0]
+
+    def value_gradient(self, p: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Values and exact gradients at points ``(..., 3)``, in one pass."""
+        P = self._powers(np.asarray(p, float))
+        v = self._eval(self._first, P)
+        return v[..., 0], v[..., 1:]
 
     def gradient(self, p: Any) -> np.ndarray:
         """Exact gradients ``(..., 3)``."""
-        P = self._powers(np.asarray(p, float))
-        return np.stack([self._eval(c, P) for c in self.d1], axis=-1)
+        return self.value_gradient(p)[1]
 
     def hessian(self, p: Any) -> np.ndarray:
         """Exact Hessians ``(..., 3, 3)``."""
         P = self._powers(np.asarray(p, float))
-        rows = [np.stack([self._eval(c, P) for c in row], axis=-1) for row in self.d2]
-        return np.stack(rows, axis=-2)
+        v = self._eval(self._second, P)  # xx, xy, xz, yy, yz, zz
+        return v[..., [0, 1, 2, 1, 3, 4, 2, 4, 5]].reshape(v.shape[:-1] + (3, 3))
 
     def along(self, o: np.ndarray, v: np.ndarray) -> np.ndarray:
         """Coefficients ``(n, degree + 1)`` (ascending powers of ``s``) of the

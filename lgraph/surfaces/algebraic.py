@@ -108,6 +108,9 @@ class AlgebraicSurface(ImplicitSurface):
     def hess(self, points: Any) -> np.ndarray:
         return self.poly.hessian(points)
 
+    def _fg(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return self.poly.value_gradient(x)
+
     def hit_count(
         self,
         origins: np.ndarray,
