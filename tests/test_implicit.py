@@ -188,3 +188,23 @@ def test_rendered_strokes_lie_on_the_surface():
     x = np.concatenate([st.xyz for st in drawing.strokes])
     assert np.abs(torus_F(*x.T)).max() < 1e-10 * 4 * 4 * 2.6**2
     assert all(st.uv is None and st.surface is s for st in drawing.strokes)
+
+
+def test_intersection_with_a_sphere_lies_on_both():
+    s = lg.CayleyCubic(radius=2.0)
+    scene = lg.Scene()
+    scene.add(s, lg.LevelLines(3))
+    scene.add(lg.Sphere(1.2), lg.ParameterLines(4, 6), transform=lg.translate(0.1, 0, 0))
+    drawing = scene.render(lg.ParallelProjector(direction=(1, 0.7, 0.45)), hidden_lines=True)
+    x = np.concatenate([st.xyz for st in drawing.strokes if st.family == "intersection"])
+    assert np.abs(s.implicit(x)).max() < 1e-12
+    assert np.abs(np.linalg.norm(x - [0.1, 0, 0], axis=1) - 1.2).max() < 1e-12
+    # the sphere meets the four necks of the cubic's cones: four closed loops
+    (batch,) = s.meeting_curves(lg.Sphere(1.2), lg.translate(0.1, 0, 0))
+    assert len(batch) == 4 and batch.closed.all()
+
+
+def test_intersection_with_an_open_patch_warns():
+    s = ImplicitSurface(ellipsoid_F, radius=3)
+    with pytest.warns(UserWarning, match="not drawn"):
+        assert s.meeting_curves(lg.Helicoid(), lg.translate(0, 0, 0)) == []

@@ -5,7 +5,7 @@ empty); it gives point marks instead (:meth:`Singularities.marks`), which
 the scene places and hides like every :class:`~lgraph.Point` (the node's
 transform moves them).  The points come from the surface's
 ``singular_points()``: for an :class:`~lgraph.AlgebraicSurface`, its nodes
-found with certainty (:mod:`lgraph.surfaces._singular`).
+found with certainty (:mod:`!lgraph.surfaces._singular`).
 
 >>> import lgraph as lg
 >>> len(Singularities().marks(lg.CayleyCubic()))

@@ -38,10 +38,9 @@ from math import comb
 
 import numpy as np
 
-__all__ = ["count_roots", "to_bernstein", "MAX_DEPTH"]
+from .._tolerance import BERNSTEIN_MAX_DEPTH as MAX_DEPTH
 
-#: most halvings of an interval
-MAX_DEPTH = 40
+__all__ = ["count_roots", "to_bernstein", "MAX_DEPTH"]
 
 
 def _shift_matrix(d: int) -> np.ndarray:

@@ -31,12 +31,11 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .._tolerance import IMPLICIT_LIPSCHITZ_ROUNDS as LIPSCHITZ_ROUNDS
+from .._tolerance import IMPLICIT_RAY_SAMPLES as RAY_SAMPLES
+
 __all__ = ["sampled_crossings", "RAY_SAMPLES", "LIPSCHITZ_ROUNDS"]
 
-#: samples of F along each ray's interval
-RAY_SAMPLES = 96
-#: most bisection rounds of the certified (Lipschitz) test
-LIPSCHITZ_ROUNDS = 48
 #: points of F evaluated in one call
 CHUNK = 1_000_000
 

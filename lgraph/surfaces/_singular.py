@@ -28,14 +28,12 @@ from typing import Any
 
 import numpy as np
 
+from .._tolerance import SINGULAR_LEVELS as LEVELS
+from .._tolerance import SINGULAR_MAX_BOXES as MAX_BOXES
 from ._polynomial import Polynomial
 
 __all__ = ["singular_points", "LEVELS", "MAX_BOXES"]
 
-#: halvings of the clip box
-LEVELS = 11
-#: most boxes examined on one level
-MAX_BOXES = 20_000
 #: Newton steps from each remaining box
 NEWTON_STEPS = 30
 

@@ -34,6 +34,9 @@ from typing import Any
 import attrs
 import numpy as np
 
+from .._tolerance import IMPLICIT_MIN_STEP as MIN_STEP
+from .._tolerance import IMPLICIT_STEP as STEP
+from .._tolerance import IMPLICIT_TRACE_TOL as TRACE_TOL
 from ..curves import CurveBatch
 
 __all__ = ["Clip", "trace_curves", "gauss_newton", "surface_grid"]
@@ -41,12 +44,8 @@ __all__ = ["Clip", "trace_curves", "gauss_newton", "surface_grid"]
 #: Gauss-Newton steps for seeds, and when evaluating a traced curve
 SEED_STEPS = 12
 EVAL_STEPS = 4
-#: tracing: the step (of the clip box's diagonal), its smallest value, the most steps
-STEP = 1 / 160
-MIN_STEP = 1e-6
+#: tracing: the most steps of one curve
 MAX_TRACE_STEPS = 6000
-#: a corrected point is on the curve when both residuals (as distances) are below this
-TRACE_TOL = 1e-12
 #: rounds of seeding (each traces the curves of the seeds left)
 MAX_ROUNDS = 8
 

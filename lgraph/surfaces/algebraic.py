@@ -2,11 +2,11 @@
 a certain ray test; the classical algebraic surfaces as built-ins.
 
 The polynomial is a formula of the scene-file language or a mapping
-``{(i, j, k): c}`` (:mod:`lgraph.surfaces._polynomial`); its gradient and
+``{(i, j, k): c}`` (:mod:`!lgraph.surfaces._polynomial`); its gradient and
 Hessian are exact.  Along a ray ``o + s v`` it is a polynomial of degree
 ``d`` in ``s``, whose crossings in the ray's interval inside the clip region
 are counted with certainty by Descartes' rule of signs on Bernstein
-coefficients (:mod:`lgraph.surfaces._bernstein`).  A ray from a point on the
+coefficients (:mod:`!lgraph.surfaces._bernstein`).  A ray from a point on the
 surface has the root ``s = 0`` divided out (twice from a contour point,
 where the ray is tangent); an origin where ``F`` vanishes to rounding error
 (``|F(o)| <= 1e-12`` times ``F``'s terms in absolute value: a singular point
@@ -32,6 +32,7 @@ import attrs
 import numpy as np
 
 from .._own import CONTOUR, OFF, ON
+from .._tolerance import ON_SURFACE_RTOL
 from ._bernstein import count_roots
 from ._polynomial import Polynomial
 from .implicit import ImplicitSurface
@@ -41,13 +42,14 @@ __all__ += ["RomanSteiner", "GoursatSurface"]
 
 #: the search grid's work: its nodes times the terms of a dense polynomial
 MAX_GRID_WORK = 1e9
-#: an origin with |F| below this fraction of its terms' magnitudes lies on the surface
-ON_SURFACE_RTOL = 1e-12
 
 
 @attrs.frozen(eq=False)
 class AlgebraicSurface(ImplicitSurface):
     """The algebraic surface ``polynomial = 0`` inside a ball or a box.
+
+    The ray test is certain (module docstring); singular points are found by
+    :class:`~lgraph.Singularities`.
 
     Parameters
     ----------
@@ -55,11 +57,11 @@ class AlgebraicSurface(ImplicitSurface):
         A formula in ``x, y, z`` (:mod:`lgraph.formula`: sums, products,
         integer powers, division by numbers; never evaluated as Python) or
         ``{(i, j, k): c}`` for ``c x^i y^j z^k``; degree at most 12.
-    radius, center, bounds, grid
-        The clip region and the search grid, as for :class:`ImplicitSurface`.
-
-    The ray test is certain (module docstring); singular points are found by
-    :class:`~lgraph.Singularities`.
+    radius : float, optional
+        The clip ball's radius, as for :class:`~lgraph.ImplicitSurface`
+        (also ``center``, ``bounds`` and ``grid``).
+    constants : mapping, optional
+        Named numbers the formula may use.
     """
 
     hit_cost: ClassVar[float] = 60.0
@@ -138,7 +140,7 @@ class AlgebraicSurface(ImplicitSurface):
 
     def singular_points(self) -> np.ndarray:
         """The ordinary singular points (nodes) inside the clip region, ``(n, 3)``
-        (:mod:`lgraph.surfaces._singular`), once per surface."""
+        (:mod:`!lgraph.surfaces._singular`), once per surface."""
         from ._memo import per_surface
         from ._singular import singular_points
 
@@ -270,7 +272,7 @@ class KummerSurface(AlgebraicSurface):
 @attrs.frozen(eq=False)
 class RomanSteiner(AlgebraicSurface):
     """Steiner's Roman surface in implicit form ``x^2 y^2 + y^2 z^2 + z^2 x^2
-    - r x y z = 0`` (the image of the sphere of :class:`~lgraph.RomanSurface`;
+    - r x y z = 0`` (the image of the sphere under ``(yz, xz, xy)``;
     it is singular along three segments of the axes), in a ball of
     ``radius`` (default ``0.6 r``)."""
 

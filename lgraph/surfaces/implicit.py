@@ -2,7 +2,7 @@
 
 It has no parametrization: its curves (the contour, plane sections, the clip
 curve) are space curves ``F = 0, G = 0`` traced by
-:mod:`lgraph.surfaces._trace` (their strokes have ``uv`` None), yet they lie
+:mod:`!lgraph.surfaces._trace` (their strokes have ``uv`` None), yet they lie
 on the surface and count as its own points in the ray tests.  The ray test
 samples ``F`` along the part of each ray inside the clip region; given a
 Lipschitz bound ``L >= |grad F|`` on the region it subdivides until every
@@ -31,6 +31,7 @@ import attrs
 import numpy as np
 
 from .._own import CONTOUR, ON
+from .._tolerance import IMPLICIT_FD_STEP as FD_STEP
 from .._tolerance import SELF_HIT_RTOL
 from .._validate import finite_positive, vector3
 from ._base import Surface
@@ -41,9 +42,6 @@ if TYPE_CHECKING:
     from ..projectors import Projector
 
 __all__ = ["ImplicitSurface"]
-
-#: the finite-difference step of numeric derivatives, of the clip box's diagonal
-FD_STEP = 1e-4
 
 
 def _bounds(owner: str, value: Any) -> tuple[tuple[float, float], ...] | None:
@@ -168,7 +166,7 @@ class ImplicitSurface(Surface):
 
     # -- what it is ------------------------------------------------------------
     @property
-    def clip(self) -> Clip:
+    def clip(self) -> Any:
         """The clip region (box or ball)."""
         return self._clip  # type: ignore[attr-defined,no-any-return]
 
