@@ -190,9 +190,13 @@ class ImplicitSurface(Surface):
         )
 
     def lines_of_curvature(self, n1: int, n2: int, spacing: str = "complete") -> list[CurveBatch]:
-        raise NotImplementedError(
-            f"LinesOfCurvature: not yet available on {type(self).__name__} (implicit surfaces)"
-        )
+        """``n1`` and ``n2`` lines of the two principal families (family
+        ``"curvature"``), integrated in space from seeds spread over the
+        surface (:mod:`!lgraph.surfaces._implicit_curvature`); ``spacing``
+        is ignored (the lines are complete)."""
+        from ._implicit_curvature import implicit_lines_of_curvature
+
+        return implicit_lines_of_curvature(self, n1, n2)
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         pad = 1e-9 * self.clip.size
