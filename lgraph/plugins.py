@@ -328,8 +328,7 @@ def get_surface(name: str) -> Any:
 
 # -- families --------------------------------------------------------------------
 def _builtin_families() -> dict[str, Any]:
-    # the modules of lgraph's own families register them when imported
-    from .families import (  # noqa: F401
+    from .families import (  # noqa: F401  (importing the modules registers their families)
         FAMILIES,
         asymptotic,
         geodesic,
