@@ -307,3 +307,47 @@ def test_builtins_validated():
     img = np.stack([u[:, 1] * u[:, 2], u[:, 0] * u[:, 2], u[:, 0] * u[:, 1]], axis=1)
     assert np.abs(r.implicit(img)).max() < 1e-15
     assert r.implicit(x).shape == (1,)
+
+
+def test_surfaces_pickle():
+    import pickle
+
+    p = np.array([[0.3, -0.2, 0.5]])
+    for s in (lg.KummerSurface(1.3), lg.ClebschCubic(), lg.AlgebraicSurface("x*y - z", radius=1)):
+        t = pickle.loads(pickle.dumps(s))
+        assert np.array_equal(t.implicit(p), s.implicit(p))
+        assert t.clip.radius == s.clip.radius
+
+
+def test_central_view_visibility_against_dense_march():
+    s = lg.CayleyCubic(radius=2.0)
+    eye = np.array([6.0, 3.5, 2.5])
+    scene = lg.Scene()
+    scene.add(s, lg.LevelLines(5))
+    drawing = scene.render(lg.CentralProjector(eye=eye), hidden_lines=True)
+    checked = {True: 0, False: 0}
+    for st in drawing.strokes:
+        n = len(st.xyz)
+        if n < 8:
+            continue
+        p = st.xyz[n // 4 : n - n // 4]
+        w = eye - p
+        dist = np.linalg.norm(w, axis=1)
+        d = w / dist[:, None]
+        # the part of each ray inside the clip ball, up to the eye
+        b = np.einsum("ij,ij->i", p, d)
+        c = np.einsum("ij,ij->i", p, p) - 4.0
+        hi = np.minimum(-b + np.sqrt(np.maximum(b * b - c, 0)), dist)
+        t = np.linspace(0, 1, 6001)[None, :] * np.maximum(hi - 1e-6, 0)[:, None] + 1e-6
+        x = p[:, None, :] + t[..., None] * d[:, None, :]
+        f = (
+            x[..., 0] ** 2
+            + x[..., 1] ** 2
+            + x[..., 2] ** 2
+            - 2 * x[..., 0] * x[..., 1] * x[..., 2]
+            - 1
+        )
+        crosses = (np.sign(f[:, 1:]) * np.sign(f[:, :-1]) < 0).any(axis=1)
+        assert (crosses == (not st.visible)).all(), st.family
+        checked[st.visible] += len(p)
+    assert checked[True] > 100 and checked[False] > 100

@@ -148,13 +148,7 @@ class ImplicitSurface(Surface):
             or not 9 <= self.grid <= 129
         ):
             raise ValueError(f"{name}: grid must be an integer from 9 to 129, got {self.grid!r}")
-        if self.radius is not None:
-            r = float(self.radius)
-            clip = Clip(self.center - r, self.center + r, r, self.center)
-        else:
-            b = np.array(self.bounds_)
-            clip = Clip(b[:, 0], b[:, 1])
-        object.__setattr__(self, "_clip", clip)
+        clip = self.clip
         c = clip.lo + 0.5 * (clip.hi - clip.lo)
         with np.errstate(all="ignore"):
             probe = np.asarray(self.F(*(np.full(2, v) for v in c)), dtype=float)
@@ -168,7 +162,11 @@ class ImplicitSurface(Surface):
     @property
     def clip(self) -> Any:
         """The clip region (box or ball)."""
-        return self._clip  # type: ignore[attr-defined,no-any-return]
+        if self.radius is not None:
+            r = float(self.radius)
+            return Clip(self.center - r, self.center + r, r, self.center)
+        b = np.array(self.bounds_)
+        return Clip(b[:, 0], b[:, 1])
 
     @property
     def domain(self) -> Any:
