@@ -100,3 +100,20 @@ def test_largest_polynomial_is_cheap_to_expand(tmp_path):
 def test_implicit_surface_by_name_points_to_algebraic(tmp_path):
     with pytest.raises(SceneFileError, match='surface = "algebraic"'):
         _load(tmp_path, '\n[[object]]\nsurface = "implicit_surface"\n')
+
+
+def test_central_eye_inside_the_surface_refused(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text(
+        '[projector]\nkind = "central"\neye = [0.0, 0.0, 0.0]\ntarget = [1.0, 0.0, 0.0]\n'
+        '\n[[object]]\nsurface = "algebraic"\nF = "x^2 + y^2 + z^2 - 1"\nradius = 2\n'
+    )
+    with pytest.raises(SceneFileError, match="behind the eye"):
+        load_scene_file(path)
+
+
+def test_animation_of_an_algebraic_surface(tmp_path):
+    scene = lg.Scene()
+    scene.add(lg.CayleyCubic(), lg.LevelLines(3), lg.Singularities())
+    out = lg.animate(scene, lg.orbit(elevation=30, frames=2), tmp_path / "c.gif", progress=False)
+    assert out.exists() and out.stat().st_size > 0

@@ -44,7 +44,7 @@ __all__ += ["RomanSteiner", "GoursatSurface"]
 MAX_GRID_WORK = 1e9
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class AlgebraicSurface(ImplicitSurface):
     """The algebraic surface ``polynomial = 0`` inside a ball or a box.
 
@@ -171,7 +171,7 @@ CLEBSCH = (
 )
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class ClebschCubic(AlgebraicSurface):
     """Clebsch's diagonal cubic surface, the cubic with 27 real lines
     (:meth:`lines`), in a ball of ``radius`` (default 1).
@@ -180,6 +180,8 @@ class ClebschCubic(AlgebraicSurface):
     >>> len(c.lines()), c.degree
     (27, 3)
     """
+
+    _shown: ClassVar[tuple[str, ...]] = ()
 
     polynomial: Any = attrs.field(init=False, default=CLEBSCH)
     radius: Any = attrs.field(default=1.0, kw_only=True)
@@ -226,11 +228,13 @@ class _Dir:
         return np.broadcast_to(self.d, np.shape(t) + (3,)).copy()
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class CayleyCubic(AlgebraicSurface):
     """Cayley's nodal cubic ``x^2 + y^2 + z^2 - 2 x y z - 1 = 0``: four nodes,
     at ``(1, 1, 1)``, ``(1, -1, -1)``, ``(-1, 1, -1)``, ``(-1, -1, 1)`` (the
     most a cubic surface can have), in a ball of ``radius`` (default 2)."""
+
+    _shown: ClassVar[tuple[str, ...]] = ()
 
     polynomial: Any = attrs.field(init=False, default="x^2 + y^2 + z^2 - 2*x*y*z - 1")
     radius: Any = attrs.field(default=2.0, kw_only=True)
@@ -245,13 +249,15 @@ def _kummer(mu: float) -> str:
     )
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class KummerSurface(AlgebraicSurface):
     """Kummer's quartic ``(x^2 + y^2 + z^2 - mu^2)^2 - lambda p q r s = 0``
     with ``lambda = (3 mu^2 - 1) / (3 - mu^2)`` and the four planes ``p, q =
     1 - z -+ sqrt(2) x``, ``r, s = 1 + z +- sqrt(2) y`` (a tetrahedron): 16
     real nodes for ``1 < mu^2 < 3`` (docs/algebraic.rst), in a ball of
     ``radius`` (default 3)."""
+
+    _shown: ClassVar[tuple[str, ...]] = ("mu",)
 
     mu: float = attrs.field(default=1.3)
     polynomial: Any = attrs.field(init=False, default=None)
@@ -269,12 +275,14 @@ class KummerSurface(AlgebraicSurface):
         super().__attrs_post_init__()
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class RomanSteiner(AlgebraicSurface):
     """Steiner's Roman surface in implicit form ``x^2 y^2 + y^2 z^2 + z^2 x^2
     - r x y z = 0`` (the image of the sphere under ``(yz, xz, xy)``;
     it is singular along three segments of the axes), in a ball of
     ``radius`` (default ``0.6 r``)."""
+
+    _shown: ClassVar[tuple[str, ...]] = ("r",)
 
     r: float = attrs.field(default=1.0)
     polynomial: Any = attrs.field(init=False, default=None)
@@ -294,11 +302,13 @@ class RomanSteiner(AlgebraicSurface):
         super().__attrs_post_init__()
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class GoursatSurface(AlgebraicSurface):
     """Goursat's quartic ``x^4 + y^4 + z^4 + a (x^2 + y^2 + z^2)^2 + b (x^2 +
     y^2 + z^2) + c = 0`` (the symmetries of the cube), in a ball of
     ``radius`` (default 2)."""
+
+    _shown: ClassVar[tuple[str, ...]] = ("a", "b", "c")
 
     a: float = attrs.field(default=0.0)
     b: float = attrs.field(default=-1.0)

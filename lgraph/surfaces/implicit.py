@@ -76,7 +76,7 @@ def _optional_positive(owner: str) -> Callable[[Any, Any, Any], None]:
     return check
 
 
-@attrs.frozen(eq=False)
+@attrs.frozen(eq=False, repr=False)
 class ImplicitSurface(Surface):
     """The surface ``F(x, y, z) = 0`` inside a box or a ball.
 
@@ -200,6 +200,18 @@ class ImplicitSurface(Surface):
         pad = 1e-9 * self.clip.size
         return self.clip.lo - pad, self.clip.hi + pad
 
+    def sample_points(self) -> np.ndarray:
+        """Points ``(n, 3)`` spread over the drawn surface (the centres of the
+        search grid's cells that ``F = 0`` crosses, in the clip region): what a
+        parameter grid is for a parametrized surface (frame windows, checks
+        of the eye's position)."""
+        from ._trace import _cell_centres, _cell_min, _straddles
+
+        grid = self._search()
+        n = int(grid["n"])
+        cells = _straddles(grid["f"], n) & (_cell_min(grid["clip"], n) <= 0)
+        return _cell_centres(grid["x"], n)[cells]
+
     def implicit(self, points: Any) -> np.ndarray:
         """``F`` at points ``(..., 3)``."""
         p = np.asarray(points, dtype=float)
@@ -307,12 +319,7 @@ class ImplicitSurface(Surface):
     def height_range(self, direction: Any) -> tuple[float, float]:
         """The range of ``x . direction`` (unit) over the drawn surface,
         estimated on the search grid (the cells that ``F = 0`` crosses)."""
-        from ._trace import _cell_centres, _cell_min, _straddles
-
-        grid = self._search()
-        n = int(grid["n"])
-        cells = _straddles(grid["f"], n) & (_cell_min(grid["clip"], n) <= 0)
-        h = _cell_centres(grid["x"], n)[cells] @ (np.asarray(direction, float))
+        h = self.sample_points() @ np.asarray(direction, float)
         if not len(h):
             return 0.0, 0.0
         return float(h.min()), float(h.max())
@@ -422,6 +429,20 @@ class ImplicitSurface(Surface):
     def describe(self) -> str:
         where = f"radius {self.radius:g}" if self.radius is not None else f"bounds {self.bounds_}"
         return f"{type(self).__name__} ({where})"
+
+    def __repr__(self) -> str:
+        what = getattr(self, "polynomial", None)
+        head = repr(what) if isinstance(what, str) else getattr(self.F, "__name__", "F")
+        shown = getattr(type(self), "_shown", None)  # a built-in: its parameters
+        if shown is not None:
+            head = ", ".join(f"{k}={getattr(self, k)!r}" for k in shown)
+        if self.radius is not None:
+            where = f"radius={self.radius!r}"
+            if np.any(self.center):
+                where += f", center={tuple(self.center.tolist())}"
+        else:
+            where = f"bounds={self.bounds_}"
+        return f"{type(self).__name__}({', '.join(x for x in (head, where) if x)})"
 
 
 def _inside_runs(curves: list, inside: Any) -> list:
