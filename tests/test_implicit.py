@@ -208,3 +208,14 @@ def test_intersection_with_an_open_patch_warns():
     s = ImplicitSurface(ellipsoid_F, radius=3)
     with pytest.warns(UserWarning, match="not drawn"):
         assert s.meeting_curves(lg.Helicoid(), lg.translate(0, 0, 0)) == []
+
+
+def test_intersection_curve_family_with_a_torus():
+    c, t = lg.CayleyCubic(), lg.Torus(1.5, 0.5)
+    for on, other in ((t, c), (c, t)):  # drawn on either node: the same space curves
+        (b,) = lg.IntersectionCurve(other).batches(on, None)
+        assert b.surface is on and b.family == "intersection" and len(b) == 2
+        k = np.repeat(np.arange(len(b)), 60)
+        x, _ = b.evaluate(k, np.concatenate([np.linspace(0, e, 60) for e in b.t1]))
+        assert np.abs(c.implicit(x)).max() < 1e-12
+        assert np.abs(t.implicit(x)).max() < 1e-11
