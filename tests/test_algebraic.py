@@ -351,3 +351,31 @@ def test_central_view_visibility_against_dense_march():
         assert (crosses == (not st.visible)).all(), st.family
         checked[st.visible] += len(p)
     assert checked[True] > 100 and checked[False] > 100
+
+
+def test_a_component_smaller_than_a_grid_cell_is_found():
+    # a sphere of radius 0.02 beside the unit sphere: far smaller than a cell
+    # of the search grid (6 / 48 = 0.125); the Bernstein bounds of the cells seed it
+    p = np.array([1.2, 0.3, -0.4])
+    F = "(x^2 + y^2 + z^2 - 1)*((x - 1.2)^2 + (y - 0.3)^2 + (z + 0.4)^2 - 0.0004)"
+    s = lg.AlgebraicSurface(F, radius=3)
+    proj = lg.ParallelProjector(direction=(1, 0.5, 0.3))
+    (contour,) = s.contour(proj)
+    (sections,) = s.level_lines((0, 0, 1), [-0.4])
+    for batch, radius in ((contour, 0.02), (sections, 0.02)):
+        assert len(batch) == 2
+        small = []
+        for k in range(2):
+            x, _ = batch.evaluate(np.full(50, k), np.linspace(0, batch.t1[k], 50))
+            small.append(np.abs(np.linalg.norm(x - p, axis=1) - radius).max() < 1e-12)
+        assert sorted(small) == [False, True]  # one on each sphere
+    # and the ray test counts the tiny sphere: roots of the two spheres' quadratics
+    v = proj.frame[2]
+    o = p - 3.0 * v
+    expected = 0
+    for c, r in ((np.zeros(3), 1.0), (p, 0.02)):
+        b, cc = (o - c) @ v, (o - c) @ (o - c) - r * r
+        roots = -b + np.array([-1, 1]) * np.sqrt(max(b * b - cc, 0))
+        expected += int(((roots > 0) & (b * b > cc)).sum())
+    assert expected == 4
+    assert s.hit_count(o[None], v[None], np.array([np.inf]))[0] == expected

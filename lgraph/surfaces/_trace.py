@@ -23,7 +23,9 @@ are all curves cut out of ``F = 0`` by a second equation ``G = 0``
 What can be missed: a component that crosses no grid cell whose corners
 show both signs of ``F`` and of ``G`` -- a closed loop smaller than a cell
 (``size / (grid - 1)`` of the clip box), or a piece that stays within a
-cell of a tangency of the two surfaces ``F = 0`` and ``G = 0``.
+cell of a tangency of the two surfaces ``F = 0`` and ``G = 0`` -- unless the
+surface gives certain bounds per cell (``cells``: polynomials, by their
+Bernstein coefficients), then every cell the curve may cross seeds.
 """
 
 from __future__ import annotations
@@ -283,12 +285,18 @@ def trace_curves(
     grid: dict[str, np.ndarray],
     g_on_grid: np.ndarray,
     clip_on_grid: np.ndarray | None = None,
+    cells: Callable[[np.ndarray, int, np.ndarray], np.ndarray] | None = None,
 ) -> list[tuple[np.ndarray, bool, int]]:
     """The curves ``F = 0, G_k = 0`` (``k`` the rows of ``g_on_grid``: ``G_k``
     at the grid's nodes) inside ``clip``: ``(points, closed, k)`` each, the
     points on the curve to ``TRACE_TOL`` of the scene, about ``STEP`` of the
     clip box apart.  ``clip_on_grid`` (optional): per node, the clip
-    function, restricting the seeds to cells near the region."""
+    function, restricting the seeds to cells near the region.  ``cells``
+    (optional): ``cells(candidates, k, straddles)``, which of the candidate
+    cells (flat indices) may hold a point of ``F = G_k = 0`` (certain
+    bounds, for polynomials; ``straddles``, per cell, whether ``G_k``'s
+    corners show both signs: exact for a plane); they seed too, besides the
+    cells whose corners show both signs of both."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
@@ -300,8 +308,16 @@ def trace_curves(
     if clip_on_grid is not None:  # cells of the clip box near the region
         fcells &= _cell_min(clip_on_grid, n) <= 1.8 * cell
     seeds, idx = [], []
+    near = None
+    if cells is not None:  # every cell near the region: the bounds decide
+        near = np.ones(len(fcells), bool)
+        if clip_on_grid is not None:
+            near = _cell_min(clip_on_grid, n) <= 1.8 * cell
     for k, gk in enumerate(np.atleast_2d(g_on_grid)):
-        c = np.flatnonzero(fcells & _straddles(gk, n))
+        gs = _straddles(gk, n)
+        c = np.flatnonzero(fcells & gs)
+        if cells is not None and near is not None:
+            c = np.union1d(c, cells(np.flatnonzero(near), k, gs))
         seeds.append(centres[c])
         idx.append(np.full(len(c), k))
     x = np.concatenate(seeds) if seeds else np.empty((0, 3))

@@ -42,6 +42,8 @@ __all__ += ["RomanSteiner", "GoursatSurface"]
 
 #: the search grid's work: its nodes times the terms of a dense polynomial
 MAX_GRID_WORK = 1e9
+#: curves are seeded from certain bounds up to this degree (beyond: corner signs only)
+MAX_CERTAIN_SEED_DEGREE = 6
 
 
 @attrs.frozen(eq=False, repr=False)
@@ -138,6 +140,31 @@ class AlgebraicSurface(ImplicitSurface):
         bound = Polynomial(np.abs(self.poly.c)).value(np.abs(o))
         return np.abs(self.poly.value(o)) <= ON_SURFACE_RTOL * bound
 
+    def _seed_cells(self, g_poly: Any) -> Any:
+        """Certain seed cells (docs/algebraic.rst, "Seeds"): the search grid's
+        cells where the Bernstein bounds of ``F`` and of ``G`` (the contour's
+        or the clip sphere's polynomial; a plane's range is its corners')
+        contain 0.  Up to degree ``MAX_CERTAIN_SEED_DEGREE``."""
+        if self.degree > MAX_CERTAIN_SEED_DEGREE:
+            return None
+        from ._memo import per_surface
+
+        grid = self._search()
+        n = int(grid["n"])
+        X = grid["x"].reshape(n, n, n, 3)
+        axes = (X[:-1, 0, 0, 0], X[0, :-1, 0, 1], X[0, 0, :-1, 2])
+        w = X[1, 1, 1] - X[0, 0, 0]
+        f_cells = per_surface(self, ("F cells", n), lambda: _may_vanish(self.poly.c, axes, w))
+        g = _g_polynomial(self.poly, g_poly)
+        g_cells = None if g is None else _may_vanish(g, axes, w)
+
+        def cells(candidates: np.ndarray, k: int, straddles: np.ndarray) -> np.ndarray:
+            keep = f_cells[candidates]
+            keep &= (straddles if g_cells is None else g_cells)[candidates]
+            return candidates[keep]
+
+        return cells
+
     def singular_points(self) -> np.ndarray:
         """The ordinary singular points (nodes) inside the clip region, ``(n, 3)``
         (:mod:`!lgraph.surfaces._singular`), once per surface."""
@@ -148,6 +175,57 @@ class AlgebraicSurface(ImplicitSurface):
 
     def describe(self) -> str:
         return f"{type(self).__name__} {self.polynomial!r} (degree {self.degree})"
+
+
+def _may_vanish(c: np.ndarray, axes: tuple[np.ndarray, ...], w: np.ndarray) -> np.ndarray:
+    """Per cell of a grid (cell ``(a, b, c)`` is ``[x_a, x_a + w_x] x ...``,
+    ``axes`` the lower coordinates; flat, in C order): whether the Bernstein
+    bounds of the polynomial ``c`` there contain 0.  The grid is a product,
+    so the Bernstein coefficients are three contractions with per-axis
+    matrices, one slab of cells at a time."""
+    from ._singular import _axis_maps
+
+    d = c.shape[0] - 1
+    M = [_axis_maps(d, np.stack([a, a, a], axis=1), np.full((len(a), 3), wi))[:, 0]
+         for a, wi in zip(axes, w)]  # fmt: skip
+    nx, ny, nz = (len(a) for a in axes)
+    out = np.empty((nx, ny, nz), bool)
+    t = np.einsum("pqr,bqj->bprj", c, M[1])  # y first: (ny, p, r, j)
+    t = np.einsum("bprj,crk->bcpjk", t, M[2])  # (ny, nz, p, j, k)
+    for a in range(nx):  # one slab of cells x_a: its coefficients, then their range
+        b = np.einsum("bcpjk,pi->bcijk", t, M[0][a]).reshape(ny, nz, -1)
+        pad = 1e-12 * np.abs(b).max(axis=2)
+        out[a] = (b.min(axis=2) - pad <= 0) & (b.max(axis=2) + pad >= 0)
+    return out.ravel()
+
+
+def _g_polynomial(poly: Polynomial, spec: Any) -> np.ndarray | None:
+    """The coefficients of the second equation ``G`` of a traced curve:
+    ``grad F . w`` (parallel contour), ``grad F . (x - eye)`` (central), the
+    clip sphere ``(|x - c|^2 - r^2) / 2``; None for planes (their corners
+    decide exactly)."""
+    if spec is None:
+        return None
+    kind = spec[0]
+    d1 = poly.d1
+    if kind == "parallel":
+        return sum(float(wi) * di for wi, di in zip(spec[1], d1))
+    if kind == "central":
+        eye = spec[1]
+        out = np.zeros_like(poly.c)
+        for i in range(3):
+            out += np.roll(d1[i], 1, axis=i) - eye[i] * d1[i]  # x_i F_i - e_i F_i
+        return out
+    c, r = spec[1], spec[2]
+    q = np.zeros((3, 3, 3))
+    q[0, 0, 0] = (float(c @ c) - r * r) / 2
+    for i in range(3):
+        e = [0, 0, 0]
+        e[i] = 2
+        q[tuple(e)] = 0.5
+        e[i] = 1
+        q[tuple(e)] = -c[i]
+    return q
 
 
 class _PolyF:

@@ -264,9 +264,18 @@ class ImplicitSurface(Surface):
 
         return per_surface(self, ("implicit grid", self.grid), compute)
 
-    def _curves(self, family: str, gg: Any, g_on_grid: np.ndarray) -> list[CurveBatch]:
+    def _seed_cells(self, g_poly: Any) -> Any:
+        """``cells(candidates, k)`` for :func:`~lgraph.surfaces._trace.trace_curves`
+        (certain bounds of ``F`` and ``G_k`` per cell), or None: general
+        surfaces have none."""
+        return None
+
+    def _curves(
+        self, family: str, gg: Any, g_on_grid: np.ndarray, g_poly: Any = None
+    ) -> list[CurveBatch]:
         grid = self._search()
-        curves = trace_curves(self._fg, gg, self.clip, grid, g_on_grid, grid["clip"])
+        cells = self._seed_cells(g_poly)
+        curves = trace_curves(self._fg, gg, self.clip, grid, g_on_grid, grid["clip"], cells)
         return curve_batch(self, family, curves, self._fg, gg)
 
     # -- what it draws -----------------------------------------------------------
@@ -286,7 +295,8 @@ class ImplicitSurface(Surface):
                 d = x - c
                 return (np.einsum("ij,ij->i", d, d) - r * r) / (2 * r), d / r
 
-            return self._curves("boundary", sphere, (np.sum((X - c) ** 2, axis=1) - r * r) / 2)
+            on_grid = (np.sum((X - c) ** 2, axis=1) - r * r) / 2
+            return self._curves("boundary", sphere, on_grid, ("sphere", c, r))
         normals = np.repeat(np.eye(3), 2, axis=0)
         offsets = np.stack([clip.lo, clip.hi], axis=1).ravel()
         return self._curves("boundary", _planes(normals, offsets), (X @ normals.T - offsets).T)
@@ -306,6 +316,7 @@ class ImplicitSurface(Surface):
                 return np.einsum("ij,ij->i", g, x - eye), np.einsum("nij,nj->ni", H, x - eye) + g
 
             on_grid = np.einsum("ij,ij->i", grid["g"], grid["x"] - eye)
+            g_poly: Any = ("central", eye)
         else:
             w = np.asarray(projector.frame[2], float)
 
@@ -314,7 +325,8 @@ class ImplicitSurface(Surface):
                     return self.grad(x) @ w, self.hess(x) @ w
 
             on_grid = grid["g"] @ w
-        return self._curves("contour", gg, on_grid)
+            g_poly = ("parallel", w)
+        return self._curves("contour", gg, on_grid, g_poly)
 
     def height_range(self, direction: Any) -> tuple[float, float]:
         """The range of ``x . direction`` (unit) over the drawn surface,
