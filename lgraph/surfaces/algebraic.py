@@ -127,10 +127,12 @@ class AlgebraicSurface(ImplicitSurface):
         o, v, lo, hi = self._ray_span(origins, directions, smax)
         own = np.zeros(len(o), np.int8) if own is None else np.asarray(own).ravel()
         own = np.where((own == OFF) & self._on_surface(o), ON, own)
-        q = self.poly.along(o, v)
+        meets = hi > lo  # rays missing the clip region meet nothing
+        q = np.zeros((len(o), self.degree + 1))
+        q[meets] = self.poly.along(o[meets], v[meets])
         out = np.zeros(len(o), np.int64)
         for drop, rows in ((0, own == OFF), (1, own == ON), (2, own == CONTOUR)):
-            r = np.flatnonzero(rows & (hi > lo))
+            r = np.flatnonzero(rows & meets)
             if len(r):  # s = 0 divided out once (ON) or twice (CONTOUR)
                 out[r] = count_roots(q[r, drop:], lo[r], hi[r])
         return out
