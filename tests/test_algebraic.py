@@ -379,3 +379,29 @@ def test_a_component_smaller_than_a_grid_cell_is_found():
         expected += int(((roots > 0) & (b * b > cc)).sum())
     assert expected == 4
     assert s.hit_count(o[None], v[None], np.array([np.inf]))[0] == expected
+
+
+def test_box_clip_visibility_against_dense_march():
+    s = lg.AlgebraicSurface("x^2 + y^2 - z^2 - 0.5", bounds=((-1.5, 1.5), (-1.2, 1.2), (-1, 1)))
+    proj = lg.ParallelProjector(direction=(0.8, -1.0, 0.6))
+    scene = lg.Scene()
+    scene.add(s, lg.LevelLines(5))
+    drawing = scene.render(proj, hidden_lines=True)
+    assert {st.family for st in drawing.strokes} == {"level", "contour", "boundary"}
+    v = proj.frame[2]
+    lo_b, hi_b = np.array([-1.5, -1.2, -1.0]), np.array([1.5, 1.2, 1.0])
+    checked = {True: 0, False: 0}
+    for st in drawing.strokes:
+        n = len(st.xyz)
+        if n < 8:
+            continue
+        p = st.xyz[n // 4 : n - n // 4]
+        with np.errstate(divide="ignore"):
+            exit_ = np.min(np.where(v > 0, (hi_b - p) / v, (lo_b - p) / v), axis=1)
+        t = np.linspace(0, 1, 6001)[None, :] * np.maximum(exit_ - 1e-6, 0)[:, None] + 1e-6
+        x = p[:, None, :] + t[..., None] * v
+        f = x[..., 0] ** 2 + x[..., 1] ** 2 - x[..., 2] ** 2 - 0.5
+        crosses = (np.sign(f[:, 1:]) * np.sign(f[:, :-1]) < 0).any(axis=1)
+        assert (crosses == (not st.visible)).all(), st.family
+        checked[st.visible] += len(p)
+    assert checked[True] > 100 and checked[False] > 100
