@@ -219,3 +219,15 @@ def test_intersection_curve_family_with_a_torus():
         x, _ = b.evaluate(k, np.concatenate([np.linspace(0, e, 60) for e in b.t1]))
         assert np.abs(c.implicit(x)).max() < 1e-12
         assert np.abs(t.implicit(x)).max() < 1e-11
+
+
+def test_default_family_in_a_fresh_process():
+    import subprocess
+    import sys
+
+    code = (
+        "import lgraph as lg; s = lg.Scene(); s.add(lg.CayleyCubic()); "
+        "print(type(s.nodes[0].families[0]).__name__)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.stdout.strip() == "LevelLines", out.stderr[-2000:]

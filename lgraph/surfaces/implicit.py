@@ -34,6 +34,7 @@ from .._own import CONTOUR, ON
 from .._tolerance import IMPLICIT_FD_STEP as FD_STEP
 from .._tolerance import SELF_HIT_RTOL
 from .._validate import finite_positive, vector3
+from ..families import level as _level  # noqa: F401  (registers "level_lines", the default)
 from ._base import Surface
 from ._trace import Clip, curve_batch, surface_grid, trace_curves
 
