@@ -178,3 +178,17 @@ __all__ += ["SurfaceOfRevolution", "Pseudosphere"]
 __all__ += ["Profile", "named_profile", "profile_from_points"]
 __all__ += ["LevelLines", "ParabolicLines", "SelfIntersection"]
 __all__ += ["orbit", "animate", "interact"]
+
+# algebraic and implicit surfaces (issue #29)
+_EXPORTS |= {
+    "ImplicitSurface": ".surfaces.implicit",
+    "AlgebraicSurface": ".surfaces.algebraic",
+    "CayleyCubic": ".surfaces.algebraic",
+    "ClebschCubic": ".surfaces.algebraic",
+    "GoursatSurface": ".surfaces.algebraic",
+    "KummerSurface": ".surfaces.algebraic",
+    "RomanSteiner": ".surfaces.algebraic",
+    "Singularities": ".families.singular",
+}
+__all__ += ["ImplicitSurface", "AlgebraicSurface", "CayleyCubic", "ClebschCubic"]
+__all__ += ["GoursatSurface", "KummerSurface", "RomanSteiner", "Singularities"]

@@ -55,7 +55,7 @@ def check_surface(owner: str, name: str, value: Any) -> Any:
     """``value`` must be a :class:`~lgraph.surfaces._base.Surface` (TypeError otherwise)."""
     # duck-typed (point and domain): importing Surface would make the surfaces,
     # which use these budgets, and this module import each other
-    if not (callable(getattr(value, "point", None)) and hasattr(value, "domain")):
+    if not (callable(getattr(value, "point", None)) and hasattr(type(value), "domain")):
         raise TypeError(f"{owner}: {name} must be a Surface, got {type(value).__name__}")
     return value
 

@@ -194,3 +194,28 @@ MAX_LABEL_LENGTH = 1000
 #: room for the caller; a RecursionError that still happens (unbraced chains
 #: of accents) becomes a ValueError too.
 MAX_LABEL_DEPTH = 10
+
+# -- implicit and algebraic surfaces (lgraph.surfaces.implicit, algebraic) ------
+#: Curves F = G = 0 (contours, sections): a traced point is on the curve when
+#: both residuals, as distances |F|/|grad F| and |G|/|grad G|, are below this
+#: (relative to the clip box's diagonal).
+IMPLICIT_TRACE_TOL = 1e-12
+#: ... traced with steps of this fraction of the clip box's diagonal, halved
+#: down to ``IMPLICIT_MIN_STEP`` (then the curve ends: a singular point).
+IMPLICIT_STEP = 1 / 160
+IMPLICIT_MIN_STEP = 1e-6
+#: Finite-difference step of the numeric gradient (fourth order) of an
+#: ImplicitSurface, relative to the clip box's diagonal (10 times it for the Hessian).
+IMPLICIT_FD_STEP = 1e-4
+#: Samples of F along a ray's interval (the ray test of a general F), and the
+#: most bisection rounds with a Lipschitz bound.
+IMPLICIT_RAY_SAMPLES = 96
+IMPLICIT_LIPSCHITZ_ROUNDS = 48
+#: Most halvings in the Bernstein root count of a ray's polynomial.
+BERNSTEIN_MAX_DEPTH = 40
+#: An origin where |F| is below this fraction of F's terms in absolute value
+#: lies on the algebraic surface (rounding error of evaluating F).
+ON_SURFACE_RTOL = 1e-12
+#: Singular points: halvings of the clip box, and the most boxes on one level.
+SINGULAR_LEVELS = 11
+SINGULAR_MAX_BOXES = 20_000

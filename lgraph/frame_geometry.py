@@ -35,7 +35,9 @@ def _scene_points(scene: Any) -> np.ndarray:
     point marks."""
     pts = []
     for node in scene.nodes:
-        if node.surface is not None:
+        if node.surface is not None and not getattr(node.surface, "parametric", True):
+            p = node.surface.sample_points()  # an implicit surface: points of F = 0
+        elif node.surface is not None:
             d = node.surface.domain
             u1 = np.linspace(*d.u1, _WINDOW_GRID)
             u2 = np.linspace(*d.u2, _WINDOW_GRID)

@@ -328,8 +328,7 @@ def get_surface(name: str) -> Any:
 
 # -- families --------------------------------------------------------------------
 def _builtin_families() -> dict[str, Any]:
-    # the modules of lgraph's own families register them when imported
-    from .families import (  # noqa: F401
+    from .families import (  # noqa: F401  (importing the modules registers their families)
         FAMILIES,
         asymptotic,
         geodesic,
@@ -337,6 +336,7 @@ def _builtin_families() -> dict[str, Any]:
         level,
         parabolic,
         self_intersection,  # noqa: F401
+        singular,  # noqa: F401
     )
 
     return FAMILIES

@@ -250,6 +250,11 @@ class Scene:
                 if style is not None and id(e) in self._unstyled:
                     changes["style"] = style
                 yield attrs.evolve(e, **changes) if changes else e
+                for fam in e.families:  # mark families (Singularities): points on the surface
+                    marks = getattr(fam, "marks", None)
+                    if marks is not None and e.surface is not None:
+                        for m in marks(e.surface):
+                            yield m.moved(compose(e.transform), mark_style)
                 label = getattr(e.item, "label", None)  # e.g. an Arrow's tip label
                 if label is not None and hasattr(label, "text"):
                     yield label.moved(

@@ -77,7 +77,8 @@ class Family:
 
 def _check_batches_args(owner: str, surface: Any, projector: Any) -> None:
     # duck-typed: importing Surface here would make families and surfaces import each other
-    if not (callable(getattr(surface, "point", None)) and hasattr(surface, "domain")):
+    # (the class is asked: an implicit surface's domain raises, it has none)
+    if not (callable(getattr(surface, "point", None)) and hasattr(type(surface), "domain")):
         raise TypeError(f"{owner}.batches: surface must be a Surface, got {type(surface).__name__}")
     if projector is not None and not callable(getattr(projector, "project", None)):
         raise TypeError(

@@ -211,6 +211,15 @@ class IntersectionCurve(Family):
             raise TypeError(f"IntersectionCurve: other must be a Surface, got {type(v).__name__}")
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        implicit = [not getattr(s, "parametric", True) for s in (surface, self.other)]
+        if any(implicit):  # an implicit surface: traced in space on it
+            from ..geometry.transforms import IDENTITY
+
+            a, b = (surface, self.other) if implicit[0] else (self.other, surface)
+            return [
+                attrs.evolve(bt, family=self.family, surface=surface)
+                for bt in a.meeting_curves(b, IDENTITY)  # type: ignore[attr-defined]
+            ]
         check_intersection("IntersectionCurve", surface, self.other, 80, None)
         curves = intersection_curves(surface, self.other)
         if not curves:

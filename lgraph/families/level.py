@@ -220,12 +220,29 @@ class LevelLines(Family):
         return lo + (hi - lo) * np.arange(1, self.n + 1) / (self.n + 1), spread
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
+        if not getattr(surface, "parametric", True):  # an implicit surface: space curves
+            return self._space_sections(surface)
         values, spread = self.levels(surface)
         if self.function is None:
             exact = _exact_sections(surface, self.direction, values)
             if exact is not None:
                 return exact
         return level_batches(surface, self.function_of(surface), values, spread, self.grid)
+
+    def _space_sections(self, surface: Any) -> list[CurveBatch]:
+        """Plane sections of a surface without parameters (``ImplicitSurface``)."""
+        if self.function is not None:
+            raise ValueError(
+                f"LevelLines: function needs a parametrized surface; {type(surface).__name__} "
+                "draws plane sections only (give direction and n or values)"
+            )
+        d = np.asarray(self.direction, float) / np.linalg.norm(self.direction)
+        if self.values is not None:
+            values = np.array(self.values)
+        else:
+            lo, hi = surface.height_range(d)
+            values = lo + (hi - lo) * np.arange(1, self.n + 1) / (self.n + 1)
+        return surface.level_lines(d, values)  # type: ignore[no-any-return]
 
 
 def level_batches(

@@ -99,6 +99,8 @@ class Meeting(Family):
 
     def batches(self, surface: Surface, projector: Projector | None) -> list[CurveBatch]:
         implicit = getattr(self.other, "implicit", None)
+        if not getattr(surface, "parametric", True):  # an implicit surface: space curves
+            return surface.meeting_curves(self.other, self.placement)  # type: ignore[attr-defined]
         if implicit is None:
             # marching steps may try points outside a patch: no warnings from there
             with np.errstate(all="ignore"):
@@ -155,8 +157,12 @@ def intersection_batches(
     each, the other node they lie on."""
     out: dict[int, list[tuple[CurveBatch, int]]] = {}
     for a, b in pairs:
-        if getattr(nodes[b].surface, "implicit", None) is None and (
-            getattr(nodes[a].surface, "implicit", None) is not None
+        if not getattr(nodes[b].surface, "parametric", True):
+            a, b = b, a  # traced in space on the implicit surface (ImplicitSurface)
+        elif (
+            getattr(nodes[a].surface, "parametric", True)
+            and getattr(nodes[b].surface, "implicit", None) is None
+            and (getattr(nodes[a].surface, "implicit", None) is not None)
         ):
             a, b = b, a  # drawn on the parametrized one, as a zero set of the implicit one
         on, other = nodes[a], nodes[b]

@@ -35,6 +35,7 @@ _VARIABLES = ("u", "v", "t", "x", "y", "z")
 PARAMETRIC = ("x", "y", "z", "u", "v", "periodic", "poles")
 REVOLUTION = ("rho", "z", "t", "axis", "angle")
 CURVE = ("x", "y", "z", "t", "closed", "style", "transform")
+ALGEBRAIC = ("F", "radius", "center", "bounds", "grid")
 
 
 def read_constants(key: Key, table: Any) -> dict[str, float]:
@@ -114,6 +115,48 @@ def parametric_surface(key: Key, obj: Mapping[str, Any]) -> Any:
         return ParametricSurface.from_formulas(*texts, u, v, constants=c, **k)
 
     return _call(key, "surface 'parametric'", build, kw)
+
+
+def algebraic_surface(key: Key, obj: Mapping[str, Any]) -> Any:
+    """``surface = "algebraic"``: the polynomial ``F`` (a formula of ``x, y, z``
+    and the constants; degree at most 12, expanded by
+    :mod:`lgraph.surfaces._polynomial`) clipped by the ball ``radius`` (about
+    ``center``) or the box ``bounds = [[x0, x1], [y0, y1], [z0, z1]]``."""
+    from ..surfaces.algebraic import AlgebraicSurface
+
+    (text,) = _texts(key, obj, ("F",), ("x", "y", "z"))
+    kw: dict[str, Any] = {"polynomial": text}
+    if "radius" in obj:
+        kw["radius"] = _number(key + ("radius",), obj["radius"], positive=True)
+    if "center" in obj:
+        kw["center"] = _vector(key + ("center",), obj["center"])
+    if "bounds" in obj:
+        b = obj["bounds"]
+        if not (isinstance(b, list) and len(b) == 3):
+            raise _Invalid(
+                key + ("bounds",),
+                f"expected [[x0, x1], [y0, y1], [z0, z1]], got {_show(b)}",
+            )
+        kw["bounds"] = tuple(_range(key + ("bounds", k), r) for k, r in enumerate(b))
+    if "grid" in obj:
+        g = obj["grid"]
+        if isinstance(g, bool) or not isinstance(g, int):
+            raise _Invalid(key + ("grid",), f"expected an integer, got {_show(g)}")
+        kw["grid"] = g
+    if "radius" not in kw and "bounds" not in kw:
+        raise _Invalid(key, "an algebraic surface needs radius (a ball) or bounds (a box)")
+    c = _CONSTANTS.get()
+
+    def build(**k: Any) -> Any:
+        # F's errors name the key F
+        return AlgebraicSurface(**k, constants=c)
+
+    try:
+        return _call(key, "surface 'algebraic'", build, kw)
+    except _Invalid as exc:
+        if "polynomial" in str(exc):
+            raise _Invalid(key + ("F",), str(exc).split(": ", 1)[-1]) from None
+        raise
 
 
 def revolution_surface(key: Key, obj: Mapping[str, Any]) -> Any:

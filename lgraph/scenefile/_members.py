@@ -16,8 +16,10 @@ from typing import Any
 
 from ._errors import Key, _Collect, _fail, _Invalid
 from ._formulas import (
+    ALGEBRAIC,
     PARAMETRIC,
     REVOLUTION,
+    algebraic_surface,
     level_function,
     parametric_surface,
     revolution_surface,
@@ -42,6 +44,7 @@ from ._values import (
 _FORMULA_SURFACES = {
     "parametric": (PARAMETRIC, parametric_surface),
     "revolution": (REVOLUTION, revolution_surface),
+    "algebraic": (ALGEBRAIC, algebraic_surface),
 }
 
 _OBJECT = (
@@ -76,6 +79,12 @@ def _object(
                 key + ("surface",),
                 "a parametric_surface needs a Python function; in a scene file write "
                 'surface = "parametric" with formulas x, y, z of u, v and ranges u, v',
+            )
+        if name in ("implicit_surface", "algebraic_surface"):
+            raise _Invalid(
+                key + ("surface",),
+                f"{name} needs a function or a polynomial; in a scene file write "
+                'surface = "algebraic" with a formula F of x, y, z and radius or bounds',
             )
         try:
             cls = get_surface(name)

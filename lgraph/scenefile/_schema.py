@@ -162,11 +162,14 @@ def _in_front(key: Key, projector: Any, node: Any, k: int) -> None:
     surface = node.surface
     if not isinstance(projector, lg.CentralProjector) or surface is None:
         return
-    d = surface.domain
-    g = [np.linspace(*d.range(i), 17) for i in (0, 1)]
-    u1, u2 = np.meshgrid(*g, indexing="ij")
-    with np.errstate(all="ignore"):
-        x = node.transform.apply(np.asarray(surface.point(u1, u2), float).reshape(-1, 3))
+    if not getattr(surface, "parametric", True):  # an implicit surface: points of F = 0
+        x = node.transform.apply(surface.sample_points())
+    else:
+        d = surface.domain
+        g = [np.linspace(*d.range(i), 17) for i in (0, 1)]
+        u1, u2 = np.meshgrid(*g, indexing="ij")
+        with np.errstate(all="ignore"):
+            x = node.transform.apply(np.asarray(surface.point(u1, u2), float).reshape(-1, 3))
     x = x[np.isfinite(x).all(axis=1)]
     if len(x) and (projector.depth(x) <= 0).any():
         raise _Invalid(
