@@ -270,31 +270,39 @@ class Drawing:
         )
         return attrs.evolve(self, strokes=keep)
 
-    def sized(self, width: Any = None, height: Any = None) -> Drawing:
-        """This drawing on a page cropped to the figure, scaled to a physical size.
+    def sized(self, width: Any = None, height: Any = None, margin: Any = None) -> Drawing:
+        r"""This drawing on a page cropped to the figure, scaled to a physical size.
 
         ``width`` and ``height`` are lengths (``"8.5cm"``, ``"60mm"``,
         ``"3in"``, ``"200pt"`` or a number of pt, see :func:`!lgraph.units.length_pt`).
         With one of them the page has exactly that width (height); with both the
-        figure keeps its aspect and fits inside ``width`` x ``height``.  Line
-        widths and label sizes stay in pt.
+        figure keeps its aspect and fits inside ``width`` x ``height``.  The
+        figure's ink -- strokes with their line widths and round caps, and
+        labels -- spans the page less ``margin`` on each side: 0 by default
+        when a size is given, so that ``\includegraphics`` places exactly the
+        figure; ``margin`` is a length too (``"2mm"``, a number of pt).
+        Without a size, ``margin`` replaces the page's margin.  Line widths and
+        label sizes stay in pt.
 
         >>> import numpy as np
         >>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)))
         >>> [round(v, 3) for v in Drawing(strokes=(s,)).sized(width="8.5cm").page_size()]
-        [240.945, 138.472]
+        [240.945, 120.722]
+        >>> [round(v, 3) for v in Drawing(strokes=(s,)).sized(width=100, margin="2mm").page_size()]
+        [100.0, 55.919]
         """
         from .units import length_pt
 
+        m = None if margin is None else length_pt(margin, "Drawing.save: margin", zero=True)
         if width is None and height is None:
-            return self
+            return self if m is None else attrs.evolve(self, page=attrs.evolve(self.page, margin=m))
         fw = None if width is None else length_pt(width, "Drawing.save: width")
         fh = None if height is None else length_pt(height, "Drawing.save: height")
-        m = self.page.margin
+        m = 0.0 if m is None else m
         for name, v in (("width", fw), ("height", fh)):
             if v is not None and v <= 2 * m:
                 raise ValueError(
-                    f"Drawing.save: {name} must exceed twice the page margin ({2 * m:g} pt), "
+                    f"Drawing.save: {name} must exceed twice the margin ({2 * m:g} pt), "
                     f"got {v:g} pt"
                 )
         page = Page(margin=m, extent=self.page.extent, fit_width=fw, fit_height=fh)
@@ -345,6 +353,7 @@ class Drawing:
         *,
         width: str | float | None = None,
         height: str | float | None = None,
+        margin: str | float | None = None,
         format: str | None = None,
         **options: Any,
     ) -> Any:
@@ -352,7 +361,9 @@ class Drawing:
 
         ``width`` / ``height`` (optional) give the figure a physical size
         (``"8.5cm"``, ``"85mm"``, ``"3.3in"``, ``"240pt"``; see :meth:`sized`),
-        for every format; line widths and label sizes stay in pt.
+        for every format: the figure's ink (strokes with their widths, and
+        labels) is that size, plus ``margin`` (a length, default 0) on each
+        side; line widths and label sizes stay in pt.
 
         ``.pdf`` (reportlab, vector), ``.png`` (pillow, anti-aliased; options
         ``dpi`` or ``size``), ``.svg`` (plain XML polylines) and any suffix a
@@ -368,7 +379,7 @@ class Drawing:
         """
         from .backends import get_backend
 
-        drawing = self.sized(width, height)
+        drawing = self.sized(width, height, margin)
         if hasattr(path, "write"):
             from .display import save_to_fileobj
 

@@ -243,7 +243,8 @@ def test_sized_page_without_labels_is_exact():
     d = lg.Drawing(strokes=(s,))
     w, h = d.sized(width="10cm").page_size()
     assert w == pytest.approx(10 / 2.54 * 72, rel=1e-12)
-    assert (h - 36) == pytest.approx((w - 36) / 3, rel=1e-12)
+    # no margin: the ink (points plus half the 0.5 pt line width each side) spans the page
+    assert (h - 0.5) == pytest.approx((w - 0.5) / 3, rel=1e-12)
 
 
 # -- ink where the text is -----------------------------------------------------------

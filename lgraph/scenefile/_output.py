@@ -142,22 +142,23 @@ _SAVE: dict[str, Callable[[Key, Any], Any]] = {
     "title": lambda k, v: _string(k, v),
     "width": lambda k, v: _length(k, v),
     "height": lambda k, v: _length(k, v),
+    "margin": lambda k, v: _length(k, v, zero=True),
 }
 
 
-def _length(key: Key, v: Any) -> float:
+def _length(key: Key, v: Any, zero: bool = False) -> float:
     from ..units import length_pt
 
     if isinstance(v, bool) or not isinstance(v, (str, int, float)):
         raise _Invalid(key, f"expected a length such as '8.5cm', got {_show(v)}")
     try:
-        return length_pt(v, "length")
+        return length_pt(v, "length", zero=zero)
     except ValueError as exc:
         raise _Invalid(key, str(exc)) from None
 
 
 #: options of Drawing.save itself, for every format
-_DRAWING_SAVE = ("width", "height")
+_DRAWING_SAVE = ("width", "height", "margin")
 
 
 def _int(key: Key, v: Any, lo: int, hi: int) -> int:
