@@ -144,6 +144,25 @@ class PlacedLabel:
 LABEL_PAD = 0.25
 
 
+#: ``save(background=...)`` not given: the drawing's own
+_KEEP: Any = object()
+
+
+def _background(value: Any) -> tuple[float, float, float] | None:
+    """A page background: a colour, or None (transparent)."""
+    if value is None or (
+        isinstance(value, str) and value.strip().lower() in ("none", "transparent")
+    ):
+        return None
+    try:
+        return _color(value)
+    except ValueError as exc:
+        raise ValueError(
+            "Drawing.save: background must be a colour or None (transparent); "
+            + str(exc).removeprefix("Style: ")
+        ) from None
+
+
 def _window(value: Any) -> tuple[float, float, float, float] | None:
     if value is None:
         return None
@@ -354,6 +373,7 @@ class Drawing:
         width: str | float | None = None,
         height: str | float | None = None,
         margin: str | float | None = None,
+        background: Any = _KEEP,
         format: str | None = None,
         **options: Any,
     ) -> Any:
@@ -364,6 +384,12 @@ class Drawing:
         for every format: the figure's ink (strokes with their widths, and
         labels) is that size, plus ``margin`` (a length, default 0) on each
         side; line widths and label sizes stay in pt.
+
+        ``background`` (optional) replaces the drawing's: a colour (any
+        ``color=`` value, ``"tab:blue"``, ``"#f4f4f4"``) painted over the
+        whole page in PNG, PDF and SVG, or None (also ``"none"``,
+        ``"transparent"``): a transparent PNG (RGBA) and nothing painted in
+        PDF and SVG.  White paints nothing in PDF and SVG either (the paper).
 
         ``.pdf`` (reportlab, vector), ``.png`` (pillow, anti-aliased; options
         ``dpi`` or ``size``), ``.svg`` (plain XML polylines) and any suffix a
@@ -380,6 +406,8 @@ class Drawing:
         from .backends import get_backend
 
         drawing = self.sized(width, height, margin)
+        if background is not _KEEP:
+            drawing = attrs.evolve(drawing, background=_background(background))
         if hasattr(path, "write"):
             from .display import save_to_fileobj
 

@@ -17,6 +17,7 @@ from typing import Any
 import attrs
 
 from ._validate import finite_positive
+from .colors import parse_color
 
 __all__ = [
     "Style",
@@ -29,45 +30,13 @@ __all__ = [
 ]
 
 #: Families drawn as a surface's outline (1.6 times as wide as its other lines).
-OUTLINE = ("contour", "boundary")
+OUTLINE = ("contour", "boundary", "arrow")
 
 
 def _color(value: Any) -> tuple[float, float, float]:
-    """Convert a colour to an RGB triple in [0, 1].
-
-    Accepts ``(r, g, b)`` floats in [0, 1], ``"#rrggbb"`` or a few names.
-    """
-    names = {
-        "black": (0.0, 0.0, 0.0),
-        "white": (1.0, 1.0, 1.0),
-        "red": (0.8, 0.0, 0.0),
-        "green": (0.0, 0.5, 0.0),
-        "blue": (0.0, 0.2, 0.8),
-        "gray": (0.5, 0.5, 0.5),
-        "grey": (0.5, 0.5, 0.5),
-    }
-    if isinstance(value, str):
-        v = value.strip().lower()
-        if v in names:
-            return names[v]
-        if v.startswith("#") and len(v) == 7:
-            try:
-                return tuple(int(v[i : i + 2], 16) / 255.0 for i in (1, 3, 5))  # type: ignore[return-value]
-            except ValueError:
-                pass
-        raise ValueError(
-            f"Style: color must be '#rrggbb', one of {sorted(names)} or an (r, g, b) "
-            f"triple in [0, 1], got {value!r}"
-        )
-    try:
-        rgb = tuple(float(c) for c in value)
-    except TypeError:
-        raise ValueError(
-            f"Style: color must be '#rrggbb' or an (r, g, b) triple in [0, 1], got {value!r}"
-        ) from None
-    if len(rgb) != 3 or not all(0.0 <= c <= 1.0 for c in rgb):
-        raise ValueError(f"Style: color must be an (r, g, b) triple in [0, 1], got {value!r}")
-    return rgb  # type: ignore[return-value]
+    """Convert a colour to an RGB triple in [0, 1]: a CSS or matplotlib name,
+    ``"#rrggbb"``, ``"#rgb"`` or ``(r, g, b)`` (:func:`lgraph.colors.parse_color`)."""
+    return parse_color(value)
 
 
 def _dash(value: Any) -> tuple[float, ...] | None:
@@ -90,6 +59,10 @@ def _dash(value: Any) -> tuple[float, ...] | None:
 @attrs.frozen
 class Style:
     """How a stroke looks: colour, line width (pt) and dash pattern (pt).
+
+    ``color`` is a CSS or matplotlib colour name (``"red"`` is ``#ff0000``,
+    ``"tab:blue"``; :data:`lgraph.colors.COLORS`), ``"#rrggbb"``, ``"#rgb"``
+    or an ``(r, g, b)`` triple in [0, 1].
 
     >>> Style(width=1.0).width
     1.0

@@ -148,6 +148,8 @@ def _strokes(
         batch, node, _, first_id = s.parts[p]
         names = batch.curve_family
         family = batch.family if names is None else names[c - first_id]
+        if family == "contour":  # an arrow's outline is drawn as family "arrow"
+            family = getattr(batch.surface, "outline_family", "contour")
         if dep:
             if (family, dep) not in hidden_styles:
                 hidden_styles[family, dep] = rule(family, dep)
@@ -477,7 +479,10 @@ def _warn_unused_styles(s: Samples, nodes: tuple[Node, ...]) -> None:
     drawn: dict[int, set[str]] = {}
     for batch, node, _, _ in s.parts:
         names = batch.curve_family
-        drawn.setdefault(node, set()).update([batch.family] if names is None else set(names))
+        got = {batch.family} if names is None else set(names)
+        if "contour" in got:
+            got.add(getattr(batch.surface, "outline_family", "contour"))
+        drawn.setdefault(node, set()).update(got)
     for k, node in enumerate(nodes):
         if isinstance(node.style, dict):
             unused = sorted(set(node.style) - drawn.get(k, set()) - {"default", *OUTLINE})

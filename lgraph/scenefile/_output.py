@@ -143,6 +143,7 @@ _SAVE: dict[str, Callable[[Key, Any], Any]] = {
     "width": lambda k, v: _length(k, v),
     "height": lambda k, v: _length(k, v),
     "margin": lambda k, v: _length(k, v, zero=True),
+    "background": lambda k, v: _string(k, v),
 }
 
 
@@ -158,7 +159,7 @@ def _length(key: Key, v: Any, zero: bool = False) -> float:
 
 
 #: options of Drawing.save itself, for every format
-_DRAWING_SAVE = ("width", "height", "margin")
+_DRAWING_SAVE = ("width", "height", "margin", "background")
 
 
 def _int(key: Key, v: Any, lo: int, hi: int) -> int:
