@@ -79,6 +79,9 @@ class Stroke:
     surface: Any = None
     style: Style = Style()
     occlusion: int = 0
+    #: the gap in pt of a point mark's halo (the lines are cut around it,
+    #: :mod:`lgraph.halos`); None: no halo
+    halo: float | None = attrs.field(default=None, kw_only=True)
 
     def __len__(self) -> int:
         return len(self.xy)
@@ -106,6 +109,9 @@ class PlacedLabel:
         Font size in pt.
     style : Style
         Its colour (hidden labels get the hidden style's colour).
+    halo : float or None
+        The gap in pt around its ink box within which the strokes are cut
+        (:mod:`lgraph.halos`); None: no halo.
     """
 
     text: str
@@ -116,6 +122,7 @@ class PlacedLabel:
     offset: tuple[float, float] = (0.0, 0.0)
     size: float = 10.0
     style: Style = Style()
+    halo: float | None = attrs.field(default=None, kw_only=True)
 
     def box(self) -> tuple[float, float, float, float]:
         """The text's ink box relative to the anchor's page position, in pt
@@ -269,7 +276,20 @@ class Drawing:
             return np.empty((0, 2)), [], []
         # one affine map for all points
         pts = np.concatenate([s.xy for s in strokes]) * scale + offset
-        return pts, np.cumsum([len(s.xy) for s in strokes]).tolist(), strokes
+        ends = np.cumsum([len(s.xy) for s in strokes]).tolist()
+        if any(x.halo is not None for x in (*self.labels, *self.strokes)):
+            from .halos import cut_strokes  # labels' halos cut the strokes on the page
+
+            pts, ends, strokes = cut_strokes(self, pts, ends, strokes)
+        return pts, ends, strokes
+
+    def halo_regions(self) -> tuple[np.ndarray, np.ndarray]:
+        """The regions cut out of the strokes on the page (pt, y up): boxes
+        ``(k, 4)`` ``x0, y0, x1, y1`` (labels' ink boxes grown by their
+        halos) and discs ``(m, 3)`` ``cx, cy, r`` (point marks with halos)."""
+        from .halos import halo_regions
+
+        return halo_regions(self)
 
     def page_strokes(self) -> Iterator[tuple[np.ndarray, Stroke]]:
         """Yield ``(points, stroke)`` with points in page units (pt, y upwards).

@@ -27,6 +27,8 @@ __all__ = [
     "HiddenStyle",
     "HiddenStyles",
     "hidden_style_rule",
+    "HALO_GAP",
+    "halo_gap",
 ]
 
 #: Families drawn as a surface's outline (1.6 times as wide as its other lines).
@@ -81,6 +83,34 @@ class Style:
     def evolve(self, **changes: Any) -> Style:
         """A copy with some fields changed."""
         return attrs.evolve(self, **changes)
+
+
+#: The gap in pt between a label's ink box (a point mark's dot) and the lines
+#: its halo cuts (``Label(..., halo=True)``; :mod:`lgraph.halos`)
+HALO_GAP = 1.5
+
+
+def halo_gap(value: Any, owner: str) -> float | None | bool:
+    """A ``halo=`` value checked: None (follow the default), False (none),
+    True (:data:`HALO_GAP`) or a gap in pt (a finite number >= 0).
+
+    >>> halo_gap(True, "Label"), halo_gap(2, "Label"), halo_gap(None, "Label")
+    (1.5, 2.0, None)
+    >>> halo_gap(-1, "Label")
+    Traceback (most recent call last):
+    ...
+    ValueError: Label: halo must be True, False, None or a gap in pt (a finite number >= 0), got -1
+    """
+    if value is None or value is False:
+        return value
+    if value is True:
+        return HALO_GAP
+    if isinstance(value, (int, float)) and math.isfinite(value) and value >= 0:
+        return float(value)
+    raise ValueError(
+        f"{owner}: halo must be True, False, None or a gap in pt (a finite number >= 0), "
+        f"got {value!r}"
+    )
 
 
 #: Default look of hidden parts (``hidden_lines=True``): thin and dashed.

@@ -455,7 +455,8 @@ def _with_marks(
 
         if vis is None:
             vis, view = Occlusion(nodes, projector), 0
-        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, rule, view)
+        halo = getattr(scene, "halo", False)
+        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, rule, view, halo)
         strokes = strokes + dots
     return Drawing(strokes=strokes, page=page, labels=placed)
 
