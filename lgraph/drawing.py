@@ -477,15 +477,16 @@ class Drawing:
 
         return to_bytes(self, "png", dpi=REPR_PNG_DPI)
 
-    def plot(self, ax: Any = None, *, axis: bool = False) -> Any:
-        """Draw the strokes into a matplotlib ``Axes`` (needs matplotlib) and return it.
+    def plot(self, ax: Any = None, *, axis: bool = False, legend: bool = False) -> Any:
+        """Draw the drawing into a matplotlib ``Axes`` (needs matplotlib) and return it.
 
-        See :func:`lgraph.display.plot`: line collections with the strokes'
-        colours, widths and dashes in pt, equal aspect, hidden parts below.
+        See :func:`lgraph.display.plot`: line collections by family with the
+        strokes' colours, widths and dashes in pt, hidden parts below, point
+        marks, labels as text (mathtext), ``legend=True`` for a legend by family.
         """
         from .display import plot
 
-        return plot(self, ax, axis=axis)
+        return plot(self, ax, axis=axis, legend=legend)
 
     def __repr__(self) -> str:
         w, h = self.page_size()
