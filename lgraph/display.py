@@ -220,8 +220,7 @@ def _plot_labels(drawing: Drawing, ax: Any) -> None:
     box at the offset anchor, as :meth:`lgraph.PlacedLabel.origin` places it."""
     from matplotlib.transforms import offset_copy
 
-    from .drawing import LABEL_PAD
-    from .style import ANCHORS
+    from .style import ANCHORS, LABEL_PAD
 
     for lab in drawing.labels:
         fx, fy = ANCHORS[lab.anchor]

@@ -31,7 +31,7 @@ import numpy as np
 from ._atomic import publish, removed_on_signals, temporary_beside
 from .dashes import MAX_DASHES, dash_polyline  # noqa: F401 - re-exported (plugins use it)
 from .page import Page, _page, page_layout
-from .style import ANCHORS, HIDDEN_STYLE, OUTLINE, Style, _color, _dash  # noqa: F401 - re-exported
+from .style import ANCHORS, HIDDEN_STYLE, LABEL_PAD, OUTLINE, Style, _color, _dash  # noqa: F401
 
 __all__ = ["Style", "Stroke", "PlacedLabel", "Page", "Drawing", "HIDDEN_STYLE"]
 
@@ -82,6 +82,9 @@ class Stroke:
     #: the gap in pt of a point mark's halo (the lines are cut around it,
     #: :mod:`lgraph.halos`); None: no halo
     halo: float | None = attrs.field(default=None, kw_only=True)
+    #: the exact curve the samples lie on (:class:`lgraph.bezier.CurveRef`,
+    #: set by the renderer), for ``save(..., curves="bezier")``; None: none
+    curve: Any = attrs.field(default=None, kw_only=True, repr=False)
 
     def __len__(self) -> int:
         return len(self.xy)
@@ -144,11 +147,6 @@ class PlacedLabel:
         ax = bx0 - pad + fx * (bx1 - bx0 + 2 * pad)
         ay = by0 - pad + fy * (by1 - by0 + 2 * pad)
         return (self.offset[0] - ax, self.offset[1] - ay)
-
-
-#: space between a label's ink box and its anchor point, in units of its size
-#: (TikZ's inner sep is about 0.33 em)
-LABEL_PAD = 0.25
 
 
 #: ``save(background=...)`` not given: the drawing's own

@@ -85,6 +85,10 @@ class Style:
         return attrs.evolve(self, **changes)
 
 
+#: space between a label's ink box and its anchor point, in units of its size
+#: (TikZ's inner sep is about 0.33 em)
+LABEL_PAD = 0.25
+
 #: The gap in pt between a label's ink box (a point mark's dot) and the lines
 #: its halo cuts (``Label(..., halo=True)``; :mod:`lgraph.halos`)
 HALO_GAP = 1.5

@@ -138,7 +138,8 @@ def _page(key: Key, p: dict[str, Any]) -> Any:
 _SAVE: dict[str, Callable[[Key, Any], Any]] = {
     "dpi": lambda k, v: _number(k, v, positive=True),
     "supersample": lambda k, v: _int(k, v, 1, 8),
-    "precision": lambda k, v: _int(k, v, 0, 6),
+    # decimals, or (curves = "bezier") the deviation as a length
+    "precision": lambda k, v: _length(k, v) and v if isinstance(v, str) else _int(k, v, 0, 6),
     "title": lambda k, v: _string(k, v),
     "width": lambda k, v: _length(k, v),
     "height": lambda k, v: _length(k, v),

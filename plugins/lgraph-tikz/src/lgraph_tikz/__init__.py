@@ -49,6 +49,7 @@ Layer names keep letters, digits and ``._+-`` (others become ``-``).
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from typing import Any
@@ -202,6 +203,7 @@ def write_tikz(
     standalone: bool = False,
     width: float | str | None = None,
     layers: str = "family",
+    curves: str = "polyline",
 ) -> None:
     r"""Write ``drawing`` as a ``tikzpicture`` (see the module docstring).
 
@@ -211,8 +213,10 @@ def write_tikz(
         The display list.
     path : path-like
         File to write.
-    precision : int, default 3
-        Decimals of the coordinates in cm (0 to 6; 3 is 0.01 mm).
+    precision : int or length, default 3
+        Decimals of the coordinates in cm (0 to 6; 3 is 0.01 mm); with
+        ``curves="bezier"`` a length (``"0.01mm"``, the default) is the
+        largest deviation from the exact curves.
     standalone : bool, default False
         Write a complete LaTeX document whose page is exactly the picture
         (it needs only LaTeX's base classes and TikZ).
@@ -224,6 +228,10 @@ def write_tikz(
     layers : "family" (default) or "surface"
         What the named styles are: one per family of curves or per surface
         (hidden parts always ``lgraph/hidden``).
+    curves : "polyline" (default) or "bezier"
+        ``"bezier"``: the strokes that know their exact curve are drawn as
+        ``.. controls (a) and (b) ..`` cubic segments within ``precision``
+        of it (:mod:`lgraph.bezier`); the others stay polylines.
 
     Raises
     ------
@@ -231,6 +239,14 @@ def write_tikz(
         For a bad option or a label whose text is not safe TeX (see the module
         docstring), before anything is written.
     """
+    deviation = None
+    if curves not in ("polyline", "bezier"):
+        raise ValueError(f"write_tikz: curves must be 'polyline' or 'bezier', got {curves!r}")
+    if curves == "bezier":
+        deviation = length_pt("0.01mm")
+        if isinstance(precision, str):
+            deviation = length_pt(precision, "write_tikz: precision")
+            precision = min(6, max(3, math.ceil(-math.log10(deviation / _CM / 10))))
     if isinstance(precision, bool) or not isinstance(precision, int) or not 0 <= precision <= 6:
         raise ValueError(f"write_tikz: precision must be an integer from 0 to 6, got {precision!r}")
     if not isinstance(standalone, bool):
@@ -243,7 +259,12 @@ def write_tikz(
     fmt = f"(%.{precision}f,%.{precision}f)"
     labels = _labels(drawing, fmt)  # checked before anything is written
     pw, ph = drawing.page_size()
-    groups = drawing_layers(drawing, layers)
+    runs = None
+    if deviation is not None:
+        from lgraph.bezier import page_curve_runs
+
+        runs = page_curve_runs(drawing, deviation)
+    groups = drawing_layers(drawing, layers, runs)
     names = [_style_name(g.name) for g in groups]
     w_cm, h_cm = pw / _CM, ph / _CM
     head = [
@@ -264,9 +285,14 @@ def write_tikz(
     head.append(f"\\useasboundingbox (0,0) rectangle ({_num(w_cm)},{_num(h_cm)});\n")
     body = []
     for name, g in zip(names, groups):
-        for pts, _ in g.runs:
-            run = np.asarray(pts, float) / _CM
-            coords = " -- ".join([fmt] * len(run)) % tuple(run.ravel().tolist())
+        for item in g.runs:
+            run = np.asarray(item[0], float) / _CM
+            if len(item) > 2 and item[2]:  # Bézier control points, 3k + 1
+                k = (len(run) - 1) // 3
+                pattern = fmt + f" .. controls {fmt} and {fmt} .. {fmt}" * k
+            else:
+                pattern = " -- ".join([fmt] * len(run))
+            coords = pattern % tuple(run.ravel().tolist())
             body.append(f"\\draw[lgraph/{name}] {coords};\n")
     body.extend(labels)
     tail = ["\\end{tikzpicture}%\n"]
