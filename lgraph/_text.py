@@ -56,6 +56,8 @@ from ._tolerance import MAX_LABEL_DEPTH, MAX_LABEL_LENGTH
 
 __all__ = [
     "TextShape",
+    "TextGlyphs",
+    "text_glyphs",
     "check_text",
     "check_tex",
     "quote",
@@ -293,3 +295,50 @@ def polygons(codes: np.ndarray, vertices: np.ndarray, steps: int = 8) -> list[np
     poly_id = np.cumsum(kind == MOVETO)[owner]
     cuts = np.flatnonzero(np.diff(poly_id)) + 1
     return [p for p in np.split(points, cuts) if len(p) >= 3]
+
+
+@attrs.frozen(eq=False)
+class TextGlyphs:
+    """A label laid out for real text (``save(..., text="text")``): glyphs
+    ``(x, y, char, style, size)`` (pt, y up, from the start of the baseline;
+    ``style`` ``"roman"``, ``"italic"`` or ``"bold"``) and filled rectangles
+    ``(x, y, w, h)`` (fraction bars, roots)."""
+
+    glyphs: tuple[tuple[float, float, str, str, float], ...]
+    rects: tuple[tuple[float, float, float, float], ...]
+
+
+#: mathtext lays real text out at this size, then scales (as matplotlib's
+#: TextPath does: its positions are rounded to whole units of this size)
+_TEXT_SCALE = 100.0
+
+
+@functools.lru_cache(maxsize=512)
+def text_glyphs(text: str, size: float) -> TextGlyphs:
+    """``text`` at ``size`` pt as glyphs of real text: plain text is one
+    glyph run; ``$...$`` mathematics is laid out by mathtext with the STIX
+    fonts (Times-like, with Unicode character codes), each glyph with its
+    character, position, style and size.
+
+    >>> g = text_glyphs("$x_1$", 10.0)
+    >>> [(c, s, round(z, 1)) for _, _, c, s, z in g.glyphs]
+    [('x', 'italic', 10.0), ('1', 'roman', 7.0)]
+    """
+    if not has_math(text) or not _mpl_available():
+        return TextGlyphs(((0.0, 0.0, text, "roman", float(size)),), ())
+    import matplotlib as mpl
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.mathtext import MathTextParser
+
+    _check_size("Label", text)
+    k = size / _TEXT_SCALE
+    with mpl.rc_context({"mathtext.fontset": "stix"}):
+        prop = FontProperties(family="STIXGeneral", size=_TEXT_SCALE)
+        parsed = MathTextParser("path").parse(text, dpi=72, prop=prop)
+    glyphs = []
+    for font, fontsize, code, _, ox, oy in parsed.glyphs:
+        name = str(getattr(font, "fname", "")).lower()
+        style = "bold" if "bold" in name else "italic" if "italic" in name else "roman"
+        glyphs.append((float(ox) * k, float(oy) * k, chr(code), style, float(fontsize) * k))
+    rects = tuple(tuple(float(v) * k for v in r) for r in parsed.rects)
+    return TextGlyphs(tuple(glyphs), rects)  # type: ignore[arg-type]

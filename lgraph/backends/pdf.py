@@ -91,6 +91,7 @@ def write_pdf(
     precision: int | str = 3,
     title: str = "lgraph",
     curves: str = "polyline",
+    text: str = "outlines",
     **options: Any,
 ) -> None:
     """Write ``drawing`` as a one-page vector PDF.
@@ -118,6 +119,11 @@ def write_pdf(
         ``"bezier"`` writes the strokes that know their exact curve (those a
         render makes) as cubic Bézier segments within ``precision`` of it
         (:mod:`lgraph.bezier`), at any page size; others stay polylines.
+    text : "outlines" (default) or "text"
+        Labels as filled glyph outlines (the same look in every format) or
+        as real text that ``pdftotext`` finds and readers copy: the base
+        fonts Times and Symbol, mathematics laid out by mathtext (STIX
+        metrics); a label with a character those fonts lack stays outlines.
 
     Notes
     -----
@@ -134,13 +140,16 @@ def write_pdf(
     ValueError
         For a bad ``precision`` or ``compress``.
     """
-    check_options("write_pdf", options, ("compress", "precision", "title", "curves"))
+    check_options("write_pdf", options, ("compress", "precision", "title", "curves", "text"))
+    from ._labels import check_text_mode
+
+    text = check_text_mode("write_pdf", text)
     precision, deviation = curve_options("write_pdf", curves, precision)
     level = _compress_level(compress)
 
     pw, ph = drawing.page_size()
     canvas = new_canvas(path, (pw, ph), level, title)
-    draw_page(canvas, drawing, precision, deviation)
+    draw_page(canvas, drawing, precision, deviation, text)
     canvas.showPage()
     canvas.save()
 
@@ -165,7 +174,13 @@ def new_canvas(path: Any, pagesize: tuple[float, float], level: int, title: str)
     return canvas
 
 
-def draw_page(canvas: Any, drawing: Any, precision: int, deviation: float | None = None) -> None:
+def draw_page(
+    canvas: Any,
+    drawing: Any,
+    precision: int,
+    deviation: float | None = None,
+    text: str = "outlines",
+) -> None:
     """Draw ``drawing``'s strokes (and background) onto the canvas's current page
     (as Bézier curves within ``deviation`` pt of the exact curves, when given)."""
     pw, ph = drawing.page_size()
@@ -219,4 +234,4 @@ def draw_page(canvas: Any, drawing: Any, precision: int, deviation: float | None
     if getattr(drawing, "labels", ()):
         from ._labels import pdf_labels
 
-        pdf_labels(drawing, canvas)
+        pdf_labels(drawing, canvas, text)

@@ -103,6 +103,7 @@ def write_svg(
     precision: int | str = 3,
     layers: str | None = "family",
     curves: str = "polyline",
+    text: str = "outlines",
     **options: Any,
 ) -> None:
     """Write ``drawing`` as an SVG file.
@@ -125,6 +126,9 @@ def write_svg(
         ``<path d="M ... C ...">`` of cubic Bézier segments within
         ``precision`` of it (:mod:`lgraph.bezier`; vpype and Inkscape read
         them), the others stay polylines.
+    text : "outlines" (default) or "text"
+        Labels as filled glyph outlines or as ``<text>`` (a ``<tspan>`` a
+        glyph, mathtext's layout in the STIX fonts): editable and searchable.
 
     Notes
     -----
@@ -143,7 +147,10 @@ def write_svg(
     ValueError
         For a bad ``precision`` or ``layers`` (before anything is written).
     """
-    check_options("write_svg", options, ("precision", "layers", "curves"))
+    check_options("write_svg", options, ("precision", "layers", "curves", "text"))
+    from ._labels import check_text_mode
+
+    text = check_text_mode("write_svg", text)
     precision, deviation = curve_options("write_svg", curves, precision)
     mode = check_layer_mode(layers, "write_svg")
     pw, ph = drawing.page_size()
@@ -179,7 +186,7 @@ def write_svg(
     if getattr(drawing, "labels", ()):
         from ._labels import svg_labels
 
-        labels = svg_labels(drawing, ph, precision)
+        labels = svg_labels(drawing, ph, precision, text)
         if mode is not None:  # one more layer, so plotter tools see one group for them all
             number = len(groups) + 1
             labels = [
