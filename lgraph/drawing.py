@@ -130,17 +130,17 @@ class PlacedLabel:
     def box(self) -> tuple[float, float, float, float]:
         """The text's ink box relative to the anchor's page position, in pt
         (offset and anchor applied)."""
-        from ._text import text_shape
+        from ._text import text_box
 
-        bx0, by0, bx1, by1 = text_shape(self.text, self.size).box
+        bx0, by0, bx1, by1 = text_box(self.text, self.size)
         ox, oy = self.origin()
         return (bx0 + ox, by0 + oy, bx1 + ox, by1 + oy)
 
     def origin(self) -> tuple[float, float]:
         """Where the text's baseline starts, relative to the anchor's page position (pt)."""
-        from ._text import text_shape
+        from ._text import text_box
 
-        bx0, by0, bx1, by1 = text_shape(self.text, self.size).box
+        bx0, by0, bx1, by1 = text_box(self.text, self.size)
         pad = LABEL_PAD * self.size
         fx, fy = ANCHORS[self.anchor]
         # the anchor point of the padded box goes to the offset anchor

@@ -111,7 +111,7 @@ class Label:
     def __attrs_post_init__(self) -> None:
         name = _name(self)
         object.__setattr__(self, "halo", halo_gap(self.halo, name))
-        check_text("Label", self.text)
+        check_text("Label", self.text, typeset=False)  # TeX may hold the document's macros
         set_ = object.__setattr__
         set_(self, "at", _point3(name, "at", self.at))
         try:
