@@ -85,6 +85,11 @@ class CurveRef:
     t1: float = attrs.field(converter=float)
     closed: bool = attrs.field(default=False, converter=bool)
 
+    def __reduce__(self) -> tuple[Any, tuple[()]]:
+        # curve batches hold local functions: a pickled drawing (sent to
+        # another process) keeps its samples and draws them as polylines
+        return (_no_curve, ())
+
     def key(self) -> tuple[int, int, int]:
         """What curves evaluated in one call share."""
         return (id(self.batch), id(self.transform), id(self.projector))
@@ -112,6 +117,11 @@ def unwrapped(t: np.ndarray, lens: np.ndarray, period: np.ndarray) -> np.ndarray
     first = np.minimum(np.concatenate([[0], np.cumsum(lens)[:-1]]), len(t) - 1).astype(np.int64)
     count -= count[first][sid]
     return t + count * np.asarray(period, float)[sid]
+
+
+def _no_curve() -> None:
+    """What a pickled :class:`CurveRef` becomes."""
+    return None
 
 
 class _Curves:

@@ -196,3 +196,12 @@ def test_bad_curve_options_are_refused(tmp_path: Path):
     with pytest.raises(ValueError, match="precision must be a positive length"):
         d.save(tmp_path / "x.pdf", curves="bezier", precision="0mm")
     assert not list(tmp_path.iterdir())
+
+
+def test_drawings_still_pickle_and_then_draw_polylines():
+    import pickle
+
+    d = _ellipsoid()
+    back = pickle.loads(pickle.dumps(d))
+    assert len(back.strokes) == len(d.strokes) and all(s.curve is None for s in back.strokes)
+    assert not any(b for _, _, b in page_curve_runs(back, PRECISION))
