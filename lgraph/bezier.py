@@ -73,7 +73,7 @@ class CurveRef:
     """How to evaluate a stroke's exact curve: curve ``index`` of ``batch``,
     moved by ``transform`` and projected by ``projector``; ``t`` holds the
     curve parameter of each of the stroke's samples, increasing (a closed
-    curve's run across its seam continues past ``t1``: :meth:`xy` takes
+    curve's run across its seam continues past ``t1``: :meth:`!wrap` takes
     such parameters modulo the period)."""
 
     batch: Any
@@ -261,9 +261,9 @@ def page_curve_runs(drawing: Any, precision_pt: float) -> list[tuple[np.ndarray,
     """The strokes of ``drawing`` on its page (pt, y up) in drawing order,
     as ``(points, stroke, is_bezier)``: Bézier control polygons within
     ``precision_pt`` of the exact curves for the strokes that know their
-    curve (``Stroke.curve``), the page polylines (:func:`page_runs
-    <lgraph.backends._common.page_runs>`) for the others (point marks,
-    drawings built by hand or cleaned for plotters).  Halos cut the curves
+    curve (``Stroke.curve``), the page polylines
+    (:func:`!lgraph.backends._common.page_runs`) for the others (point
+    marks, drawings built by hand or cleaned for plotters).  Halos cut the curves
     where they cross the regions' edges (located on the exact curve)."""
     from .backends._common import page_runs
     from .halos import halo_regions
