@@ -205,3 +205,23 @@ def test_drawings_still_pickle_and_then_draw_polylines():
     back = pickle.loads(pickle.dumps(d))
     assert len(back.strokes) == len(d.strokes) and all(s.curve is None for s in back.strokes)
     assert not any(b for _, _, b in page_curve_runs(back, PRECISION))
+
+
+def test_scene_files_and_the_command_line_take_the_new_save_keys(tmp_path: Path):
+    path = tmp_path / "b.toml"
+    path.write_text(
+        '[projector]\nkind = "parallel"\ndirection = [1, 1, 1]\n\n'
+        '[save]\ncurves = "bezier"\nprecision = "0.02mm"\ntext = "text"\nmargin = "1mm"\n'
+        'background = "none"\n\n[[object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
+    )
+    save = lg.load_scene_file(path)[2]["save"]
+    assert save["curves"] == "bezier" and save["precision"] == "0.02mm"
+    assert save["margin"] == pytest.approx(length_pt("1mm"))
+    from lgraph.cli import main
+
+    assert main(["render", str(path), "-o", str(tmp_path / "b.svg")]) in (0, None)
+    svg = (tmp_path / "b.svg").read_text()
+    assert "<path" in svg and " C" in svg
+    path.write_text(path.read_text().replace('"0.02mm"', '"0.02 parsecs"'))
+    with pytest.raises(lg.SceneFileError, match="save.precision"):
+        lg.load_scene_file(path)

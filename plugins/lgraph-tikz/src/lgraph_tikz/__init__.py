@@ -6,6 +6,7 @@ Registered through the entry point group ``lgraph.backends`` (see
     drawing.save("figure.tex")                       # \input{figure.tex} in a document
     drawing.save("figure.tex", width="8.5cm")        # scaled to 8.5 cm wide
     drawing.save("figure.tex", standalone=True)      # a complete document of its own
+    drawing.save("figure.tex", curves="bezier")      # exact curves (lgraph.bezier)
 
 or ``lgraph render fig.toml -o fig.tex``.  Coordinates are in cm.  Every
 layer of the drawing (:mod:`lgraph.layers`: one per family, hidden parts in
