@@ -34,17 +34,17 @@ Layer names keep letters, digits and ``._+-`` (others become ``-``).
 >>> from lgraph import Drawing, Page, Stroke
 >>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)), family="u1")
 >>> d = Drawing(strokes=(s,), page=Page(margin=0, extent=72))
->>> with tempfile.TemporaryDirectory() as tmp:
+>>> with tempfile.TemporaryDirectory() as tmp:  # the ink, round caps included, is 5.08 cm wide
 ...     write_tikz(d, os.path.join(tmp, "a.tex"), width="5.08cm")
 ...     text = open(os.path.join(tmp, "a.tex")).read()
 >>> print(text, end="")
-% lgraph figure, 5.08 x 2.54 cm; restyle with \tikzset{lgraph/<layer>/.style={...}}
+% lgraph figure, 5.08 x 2.5488 cm; restyle with \tikzset{lgraph/<layer>/.style={...}}
 % layers: u1
 \providecommand\lgraphstyle[2]{\pgfkeysifdefined{/tikz/lgraph/#1/.@cmd}{}{\tikzset{lgraph/#1/.style={#2}}}}%
 \begin{tikzpicture}[x=1cm, y=1cm, line cap=round, line join=round]
 \lgraphstyle{u1}{draw={rgb,255:red,0;green,0;blue,0}, line width=0.5bp}
-\useasboundingbox (0,0) rectangle (5.08,2.54);
-\draw[lgraph/u1] (0.000,0.000) -- (5.080,2.540);
+\useasboundingbox (0,0) rectangle (5.08,2.5488);
+\draw[lgraph/u1] (0.009,0.009) -- (5.071,2.540);
 \end{tikzpicture}%
 """
 
