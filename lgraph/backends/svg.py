@@ -20,13 +20,13 @@ them as one pen each.  Each polyline carries ``data-family`` and
 ...     path = os.path.join(tmp, "a.svg")
 ...     write_svg(d.sized(width="50.8mm"), path, precision=1)
 ...     root = ET.parse(path).getroot()
->>> root.get("width"), root.get("height"), root.get("viewBox")
-('50.8mm', '25.4mm', '0 0 144 72')
+>>> root.get("width"), root.get("height"), root.get("viewBox")  # the ink, round caps too
+('50.8mm', '25.4882mm', '0 0 144 72.25')
 >>> layer = root.find("{http://www.w3.org/2000/svg}g")
 >>> layer.get("{http://www.inkscape.org/namespaces/inkscape}label"), layer.get("stroke-width")
 ('1 u1', '0.5')
 >>> layer.find("{http://www.w3.org/2000/svg}polyline").get("points")
-'0.0,72.0 144.0,0.0'
+'0.2,72.0 143.8,0.2'
 """
 
 from __future__ import annotations
