@@ -371,7 +371,7 @@ def text_glyphs(text: str, size: float) -> TextGlyphs:
     glyphs = []
     for font, fontsize, code, _, ox, oy in parsed.glyphs:
         name = str(getattr(font, "fname", "")).lower()
-        style = "bold" if "bold" in name else "italic" if "italic" in name else "roman"
+        style = "bold" if "bol" in name else "italic" if "ital" in name else "roman"  # STIXGeneralBol
         glyphs.append((float(ox) * k, float(oy) * k, chr(code), style, float(fontsize) * k))
     rects = tuple(tuple(float(v) * k for v in r) for r in parsed.rects)
     return TextGlyphs(tuple(glyphs), rects)  # type: ignore[arg-type]

@@ -86,3 +86,15 @@ def test_bad_text_option_is_refused(tmp_path: Path):
     with pytest.raises(ValueError, match="write_pdf: text must be 'outlines' or 'text'"):
         _drawing().save(tmp_path / "x.pdf", text="glyphs")
     assert not (tmp_path / "x.pdf").exists()
+
+
+def test_glyph_styles_follow_the_mathematics():
+    pytest.importorskip("matplotlib")
+    from lgraph._text import text_glyphs
+
+    g = text_glyphs(r"$\mathbf{x}_1 + y$ and", 10.0).glyphs
+    styles = {c: st for _, _, c, st, _ in g if c.strip()}
+    assert styles["x"] == "bold" and styles["1"] == "roman" and styles["y"] == "italic"
+    assert styles["a"] == "roman"  # text outside $ is upright
+    sizes = {c: z for _, _, c, _, z in g}
+    assert sizes["1"] < sizes["x"]  # the subscript is smaller
