@@ -370,8 +370,8 @@ def text_glyphs(text: str, size: float) -> TextGlyphs:
         parsed = MathTextParser("path").parse(text, dpi=72, prop=prop)
     glyphs = []
     for font, fontsize, code, _, ox, oy in parsed.glyphs:
-        name = str(getattr(font, "fname", "")).lower()
-        style = "bold" if "bol" in name else "italic" if "ital" in name else "roman"  # STIXGeneralBol
+        name = str(getattr(font, "fname", "")).lower()  # STIXGeneralBol, STIXGeneralItalic
+        style = "bold" if "bol" in name else "italic" if "ital" in name else "roman"
         glyphs.append((float(ox) * k, float(oy) * k, chr(code), style, float(fontsize) * k))
     rects = tuple(tuple(float(v) * k for v in r) for r in parsed.rects)
     return TextGlyphs(tuple(glyphs), rects)  # type: ignore[arg-type]
