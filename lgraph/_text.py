@@ -56,10 +56,13 @@ from ._tolerance import MAX_LABEL_DEPTH, MAX_LABEL_LENGTH
 
 __all__ = [
     "TextShape",
+    "TextGlyphs",
+    "text_glyphs",
     "check_text",
     "check_tex",
     "quote",
     "text_shape",
+    "text_box",
     "has_math",
     "EXTRA_HINT",
     "MAX_LABEL_LENGTH",
@@ -108,7 +111,7 @@ def _mpl_available() -> bool:
     return True
 
 
-def check_text(owner: str, text: Any) -> str:
+def check_text(owner: str, text: Any, typeset: bool = True) -> str:
     """Validate label text; raises ValueError naming the label and the problem.
 
     Checks, in this order and each before anything parses the text: a
@@ -116,8 +119,11 @@ def check_text(owner: str, text: Any) -> str:
     characters (C0, DEL, C1, lone surrogates, U+FFFE, U+FFFF: a label is one
     line) and no TeX that reaches files or the shell (both :func:`check_tex`),
     not empty, groups nested at most :data:`MAX_LABEL_DEPTH` deep,
-    balanced ``$``; then (when matplotlib is installed) that mathtext knows
-    every TeX command.
+    balanced ``$``; then, with ``typeset`` (and matplotlib installed), that
+    mathtext knows every TeX command.  :class:`lgraph.Label` does not
+    typeset: the TikZ backend hands the text to TeX, where the document's
+    macros are defined; lgraph typesets a label where it draws its glyphs
+    (:func:`text_shape`).
     """
     if not isinstance(text, str):
         raise TypeError(f"{owner}: text must be a string, got {type(text).__name__}")
@@ -131,19 +137,24 @@ def check_text(owner: str, text: Any) -> str:
         raise ValueError(
             f"{owner} {quote(text)}: unbalanced $ (mathematics goes between a pair of $...$)"
         )
-    if has_math(text) and _mpl_available():
-        try:
-            _outline(text, 10.0)
-        except _TypesetError as exc:
-            raise ValueError(f"{owner}: {str(exc).partition(': ')[2]}") from None
-        except ValueError as exc:
-            lines = [ln.strip() for ln in str(exc).splitlines() if ln.strip()]
-            why = next((ln for ln in lines if "Exception:" in ln or "Error" in ln), lines[-1:])
-            why = why if isinstance(why, str) else (why[0] if why else "cannot parse")
-            why = re.sub(r"^\w*(Exception|Error):\s*", "", why)
-            why = re.sub(r",\s*found .*$", "", why)
-            raise ValueError(f"{owner} {quote(text)}: unknown TeX in the text: {why}") from None
+    if typeset and has_math(text) and _mpl_available():
+        _typeset(owner, text, 10.0)
     return text
+
+
+def _typeset(owner: str, text: str, size: float) -> tuple[np.ndarray, np.ndarray]:
+    """mathtext's outline of ``text``, its errors as one ValueError naming the label."""
+    try:
+        return _outline(text, size)
+    except _TypesetError as exc:
+        raise ValueError(f"{owner}: {str(exc).partition(': ')[2]}") from None
+    except ValueError as exc:
+        lines = [ln.strip() for ln in str(exc).splitlines() if ln.strip()]
+        why = next((ln for ln in lines if "Exception:" in ln or "Error" in ln), lines[-1:])
+        why = why if isinstance(why, str) else (why[0] if why else "cannot parse")
+        why = re.sub(r"^\w*(Exception|Error):\s*", "", why)
+        why = re.sub(r",\s*found .*$", "", why)
+        raise ValueError(f"{owner} {quote(text)}: unknown TeX in the text: {why}") from None
 
 
 @attrs.frozen(eq=False)
@@ -203,7 +214,14 @@ def text_shape(text: str, size: float) -> TextShape:
         ascent, descent = getAscentDescent(FALLBACK_FONT, size)
         width = stringWidth(text, FALLBACK_FONT, size)
         return TextShape((0.0, float(descent), float(width), float(ascent)), size, string=text)
-    codes, vertices = _outline(text, size)
+    try:
+        codes, vertices = _typeset("Label", text, size)
+    except ValueError as exc:
+        raise ValueError(
+            f"{exc}; lgraph draws this label's glyphs itself here (PDF, SVG, PNG), with "
+            "mathtext, which knows no document macros: the TikZ backend (.tex) hands the "
+            "text to TeX as written"
+        ) from None
     drawn = vertices[codes != CLOSEPOLY]
     if len(drawn):
         box = (*drawn.min(axis=0).tolist(), *drawn.max(axis=0).tolist())
@@ -293,3 +311,67 @@ def polygons(codes: np.ndarray, vertices: np.ndarray, steps: int = 8) -> list[np
     poly_id = np.cumsum(kind == MOVETO)[owner]
     cuts = np.flatnonzero(np.diff(poly_id)) + 1
     return [p for p in np.split(points, cuts) if len(p) >= 3]
+
+
+def text_box(text: str, size: float) -> tuple[float, float, float, float]:
+    r"""The ink box of ``text`` for the page layout: :func:`text_shape`'s, or,
+    where lgraph cannot typeset it (document macros, or mathematics without
+    matplotlib: TikZ output, where TeX typesets it), an estimate: half an em
+    a character, control words one character, commands and braces none.
+
+    >>> text_box("$\\vx_1$", 10.0)
+    (0.0, -2.5, 10.0, 7.5)
+    """
+    try:
+        return text_shape(text, size).box
+    except (ValueError, ImportError):
+        body = re.sub(r"\\[A-Za-z]+", "x", text)
+        n = len(re.sub(r"[${}^_\\]", "", body)) or 1
+        return (0.0, -0.25 * size, 0.5 * size * n, 0.75 * size)
+
+
+@attrs.frozen(eq=False)
+class TextGlyphs:
+    """A label laid out for real text (``save(..., text="text")``): glyphs
+    ``(x, y, char, style, size)`` (pt, y up, from the start of the baseline;
+    ``style`` ``"roman"``, ``"italic"`` or ``"bold"``) and filled rectangles
+    ``(x, y, w, h)`` (fraction bars, roots)."""
+
+    glyphs: tuple[tuple[float, float, str, str, float], ...]
+    rects: tuple[tuple[float, float, float, float], ...]
+
+
+#: mathtext lays real text out at this size, then scales (as matplotlib's
+#: TextPath does: its positions are rounded to whole units of this size)
+_TEXT_SCALE = 100.0
+
+
+@functools.lru_cache(maxsize=512)
+def text_glyphs(text: str, size: float) -> TextGlyphs:
+    """``text`` at ``size`` pt as glyphs of real text: plain text is one
+    glyph run; ``$...$`` mathematics is laid out by mathtext with the STIX
+    fonts (Times-like, with Unicode character codes), each glyph with its
+    character, position, style and size.
+
+    >>> g = text_glyphs("$x_1$", 10.0)
+    >>> [(c, s, round(z, 1)) for _, _, c, s, z in g.glyphs]
+    [('x', 'italic', 10.0), ('1', 'roman', 7.0)]
+    """
+    if not has_math(text) or not _mpl_available():
+        return TextGlyphs(((0.0, 0.0, text, "roman", float(size)),), ())
+    import matplotlib as mpl
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.mathtext import MathTextParser
+
+    _check_size("Label", text)
+    k = size / _TEXT_SCALE
+    with mpl.rc_context({"mathtext.fontset": "stix"}):
+        prop = FontProperties(family="STIXGeneral", size=_TEXT_SCALE)
+        parsed = MathTextParser("path").parse(text, dpi=72, prop=prop)
+    glyphs = []
+    for font, fontsize, code, _, ox, oy in parsed.glyphs:
+        name = str(getattr(font, "fname", "")).lower()  # STIXGeneralBol, STIXGeneralItalic
+        style = "bold" if "bol" in name else "italic" if "ital" in name else "roman"
+        glyphs.append((float(ox) * k, float(oy) * k, chr(code), style, float(fontsize) * k))
+    rects = tuple(tuple(float(v) * k for v in r) for r in parsed.rects)
+    return TextGlyphs(tuple(glyphs), rects)  # type: ignore[arg-type]

@@ -142,14 +142,22 @@ def _matplotlib() -> Any:
     return matplotlib, LineCollection
 
 
-def plot(drawing: Drawing, ax: Any = None, *, axis: bool = False) -> Any:
-    """Draw the strokes into a matplotlib ``Axes`` (a new figure when None).
+def plot(drawing: Drawing, ax: Any = None, *, axis: bool = False, legend: bool = False) -> Any:
+    """Draw the drawing into a matplotlib ``Axes`` (a new figure when None).
 
-    One ``LineCollection`` per style (hidden parts first, below the visible
-    ones), in projection coordinates with equal aspect; line widths and dash
-    lengths in pt as in the PDF (matplotlib's widths are pt; its dash scaling
-    by the line width is undone).  ``axis=False`` hides the axes' frame and
-    ticks, which mean nothing for a projection.  Returns the Axes.
+    One ``LineCollection`` per family, visibility and style (hidden parts
+    first, below the visible ones, dashed as the style says), labelled with
+    the family (``"u1"``, ``"contour"``; hidden ones ``"u1 (hidden)"``), in
+    projection coordinates with equal aspect; line widths and dash lengths
+    in pt as in the PDF (matplotlib's widths are pt; its dash scaling by the
+    line width is undone).  Point marks are round markers of their size in
+    pt (label ``"point"``); labels are matplotlib text at their anchors,
+    offset and aligned as in the files (mathtext with Computer Modern for
+    ``$...$``), in their size and colour.  ``legend=True`` adds a legend
+    with one entry per family (and one for hidden parts of each).
+    ``axis=False`` hides the axes' frame and ticks, which mean nothing for
+    a projection.  Halos are not cut here (matplotlib lays text out itself).
+    Returns the Axes.
     """
     from .backends._common import finite_runs
 
@@ -160,16 +168,22 @@ def plot(drawing: Drawing, ax: Any = None, *, axis: bool = False) -> Any:
         _, ax = plt.subplots()
     scale_dashes = bool(matplotlib.rcParams.get("lines.scale_dashes", True))
     groups: dict[tuple, list[np.ndarray]] = {}
+    dots: dict[tuple, list[np.ndarray]] = {}
     for s in sorted(drawing.strokes, key=lambda s: s.visible):
+        st = s.style
+        if s.family == "point" and len(s.xy):
+            dots.setdefault((s.visible, st.color, st.width), []).append(s.xy[0])
+            continue
         runs = finite_runs(s.xy)
         if runs:
-            st = s.style
-            groups.setdefault((s.visible, st.color, st.width, st.dash), []).extend(runs)
-    for (visible, color, width, dash), segments in groups.items():
+            groups.setdefault((s.family, s.visible, st.color, st.width, st.dash), []).extend(runs)
+    handles: dict[str, Any] = {}
+    for (family, visible, color, width, dash), segments in groups.items():
         style: Any = "solid"
         if dash:
             k = width if scale_dashes else 1.0
             style = (0.0, tuple(x / k for x in dash))
+        name = family if visible else f"{family} (hidden)"
         lc = LineCollection(
             segments,
             colors=[color],
@@ -178,14 +192,54 @@ def plot(drawing: Drawing, ax: Any = None, *, axis: bool = False) -> Any:
             capstyle="round",
             joinstyle="round",
             zorder=2.0 if visible else 1.5,
-            label="visible" if visible else "hidden",
+            label=name,
         )
         ax.add_collection(lc)
+        handles.setdefault(name, lc)
+    for (visible, color, size), at in dots.items():
+        xy = np.array(at)
+        name = "point" if visible else "point (hidden)"
+        z = 2.5 if visible else 1.6
+        (line,) = ax.plot(*xy.T, "o", ms=size, mew=0, color=color, zorder=z, label=name)
+        handles.setdefault(line.get_label(), line)
+    _plot_labels(drawing, ax)
     x0, y0, x1, y1 = drawing.bounds()
     pad = 0.02 * max(x1 - x0, y1 - y0, 1e-12)
     ax.set_xlim(x0 - pad, x1 + pad)
     ax.set_ylim(y0 - pad, y1 + pad)
     ax.set_aspect("equal")
+    if legend and handles:
+        ax.legend(list(handles.values()), list(handles), loc="best", fontsize="small")
     if not axis:
         ax.set_axis_off()
     return ax
+
+
+def _plot_labels(drawing: Drawing, ax: Any) -> None:
+    """The labels as matplotlib text: the anchor point of the text's padded
+    box at the offset anchor, as :meth:`lgraph.PlacedLabel.origin` places it."""
+    from matplotlib.transforms import offset_copy
+
+    from .style import ANCHORS, LABEL_PAD
+
+    for lab in drawing.labels:
+        fx, fy = ANCHORS[lab.anchor]
+        pad = LABEL_PAD * lab.size
+        dx = lab.offset[0] + pad * (1 - 2 * fx)
+        dy = lab.offset[1] + pad * (1 - 2 * fy)
+        where = offset_copy(ax.transData, fig=ax.figure, x=dx, y=dy, units="points")
+        ha = {0.0: "left", 0.5: "center", 1.0: "right"}[fx]
+        va = {0.0: "bottom", 0.5: "center", 1.0: "top"}[fy]  # "bottom": of the ink
+        ax.text(
+            float(lab.xy[0]),
+            float(lab.xy[1]),
+            lab.text,
+            transform=where,
+            ha=ha,
+            va=va,
+            fontsize=lab.size,
+            color=lab.style.color,
+            family="DejaVu Serif",
+            math_fontfamily="cm",
+            zorder=3.0 if lab.visible else 1.7,
+        )

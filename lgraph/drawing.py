@@ -31,7 +31,7 @@ import numpy as np
 from ._atomic import publish, removed_on_signals, temporary_beside
 from .dashes import MAX_DASHES, dash_polyline  # noqa: F401 - re-exported (plugins use it)
 from .page import Page, _page, page_layout
-from .style import ANCHORS, HIDDEN_STYLE, OUTLINE, Style, _color, _dash  # noqa: F401 - re-exported
+from .style import ANCHORS, HIDDEN_STYLE, LABEL_PAD, OUTLINE, Style, _color, _dash  # noqa: F401
 
 __all__ = ["Style", "Stroke", "PlacedLabel", "Page", "Drawing", "HIDDEN_STYLE"]
 
@@ -79,6 +79,12 @@ class Stroke:
     surface: Any = None
     style: Style = Style()
     occlusion: int = 0
+    #: the gap in pt of a point mark's halo (the lines are cut around it,
+    #: :mod:`lgraph.halos`); None: no halo
+    halo: float | None = attrs.field(default=None, kw_only=True)
+    #: the exact curve the samples lie on (:class:`lgraph.bezier.CurveRef`,
+    #: set by the renderer), for ``save(..., curves="bezier")``; None: none
+    curve: Any = attrs.field(default=None, kw_only=True, repr=False)
 
     def __len__(self) -> int:
         return len(self.xy)
@@ -106,6 +112,9 @@ class PlacedLabel:
         Font size in pt.
     style : Style
         Its colour (hidden labels get the hidden style's colour).
+    halo : float or None
+        The gap in pt around its ink box within which the strokes are cut
+        (:mod:`lgraph.halos`); None: no halo.
     """
 
     text: str
@@ -116,21 +125,22 @@ class PlacedLabel:
     offset: tuple[float, float] = (0.0, 0.0)
     size: float = 10.0
     style: Style = Style()
+    halo: float | None = attrs.field(default=None, kw_only=True)
 
     def box(self) -> tuple[float, float, float, float]:
         """The text's ink box relative to the anchor's page position, in pt
         (offset and anchor applied)."""
-        from ._text import text_shape
+        from ._text import text_box
 
-        bx0, by0, bx1, by1 = text_shape(self.text, self.size).box
+        bx0, by0, bx1, by1 = text_box(self.text, self.size)
         ox, oy = self.origin()
         return (bx0 + ox, by0 + oy, bx1 + ox, by1 + oy)
 
     def origin(self) -> tuple[float, float]:
         """Where the text's baseline starts, relative to the anchor's page position (pt)."""
-        from ._text import text_shape
+        from ._text import text_box
 
-        bx0, by0, bx1, by1 = text_shape(self.text, self.size).box
+        bx0, by0, bx1, by1 = text_box(self.text, self.size)
         pad = LABEL_PAD * self.size
         fx, fy = ANCHORS[self.anchor]
         # the anchor point of the padded box goes to the offset anchor
@@ -139,9 +149,23 @@ class PlacedLabel:
         return (self.offset[0] - ax, self.offset[1] - ay)
 
 
-#: space between a label's ink box and its anchor point, in units of its size
-#: (TikZ's inner sep is about 0.33 em)
-LABEL_PAD = 0.25
+#: ``save(background=...)`` not given: the drawing's own
+_KEEP: Any = object()
+
+
+def _background(value: Any) -> tuple[float, float, float] | None:
+    """A page background: a colour, or None (transparent)."""
+    if value is None or (
+        isinstance(value, str) and value.strip().lower() in ("none", "transparent")
+    ):
+        return None
+    try:
+        return _color(value)
+    except ValueError as exc:
+        raise ValueError(
+            "Drawing.save: background must be a colour or None (transparent); "
+            + str(exc).removeprefix("Style: ")
+        ) from None
 
 
 def _window(value: Any) -> tuple[float, float, float, float] | None:
@@ -250,7 +274,20 @@ class Drawing:
             return np.empty((0, 2)), [], []
         # one affine map for all points
         pts = np.concatenate([s.xy for s in strokes]) * scale + offset
-        return pts, np.cumsum([len(s.xy) for s in strokes]).tolist(), strokes
+        ends = np.cumsum([len(s.xy) for s in strokes]).tolist()
+        if any(x.halo is not None for x in (*self.labels, *self.strokes)):
+            from .halos import cut_strokes  # labels' halos cut the strokes on the page
+
+            pts, ends, strokes = cut_strokes(self, pts, ends, strokes)
+        return pts, ends, strokes
+
+    def halo_regions(self) -> tuple[np.ndarray, np.ndarray]:
+        """The regions cut out of the strokes on the page (pt, y up): boxes
+        ``(k, 4)`` ``x0, y0, x1, y1`` (labels' ink boxes grown by their
+        halos) and discs ``(m, 3)`` ``cx, cy, r`` (point marks with halos)."""
+        from .halos import halo_regions
+
+        return halo_regions(self)
 
     def page_strokes(self) -> Iterator[tuple[np.ndarray, Stroke]]:
         """Yield ``(points, stroke)`` with points in page units (pt, y upwards).
@@ -270,31 +307,39 @@ class Drawing:
         )
         return attrs.evolve(self, strokes=keep)
 
-    def sized(self, width: Any = None, height: Any = None) -> Drawing:
-        """This drawing on a page cropped to the figure, scaled to a physical size.
+    def sized(self, width: Any = None, height: Any = None, margin: Any = None) -> Drawing:
+        r"""This drawing on a page cropped to the figure, scaled to a physical size.
 
         ``width`` and ``height`` are lengths (``"8.5cm"``, ``"60mm"``,
         ``"3in"``, ``"200pt"`` or a number of pt, see :func:`!lgraph.units.length_pt`).
         With one of them the page has exactly that width (height); with both the
-        figure keeps its aspect and fits inside ``width`` x ``height``.  Line
-        widths and label sizes stay in pt.
+        figure keeps its aspect and fits inside ``width`` x ``height``.  The
+        figure's ink -- strokes with their line widths and round caps, and
+        labels -- spans the page less ``margin`` on each side: 0 by default
+        when a size is given, so that ``\includegraphics`` places exactly the
+        figure; ``margin`` is a length too (``"2mm"``, a number of pt).
+        Without a size, ``margin`` replaces the page's margin.  Line widths and
+        label sizes stay in pt.
 
         >>> import numpy as np
         >>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)))
         >>> [round(v, 3) for v in Drawing(strokes=(s,)).sized(width="8.5cm").page_size()]
-        [240.945, 138.472]
+        [240.945, 120.722]
+        >>> [round(v, 3) for v in Drawing(strokes=(s,)).sized(width=100, margin="2mm").page_size()]
+        [100.0, 55.919]
         """
         from .units import length_pt
 
+        m = None if margin is None else length_pt(margin, "Drawing.save: margin", zero=True)
         if width is None and height is None:
-            return self
+            return self if m is None else attrs.evolve(self, page=attrs.evolve(self.page, margin=m))
         fw = None if width is None else length_pt(width, "Drawing.save: width")
         fh = None if height is None else length_pt(height, "Drawing.save: height")
-        m = self.page.margin
+        m = 0.0 if m is None else m
         for name, v in (("width", fw), ("height", fh)):
             if v is not None and v <= 2 * m:
                 raise ValueError(
-                    f"Drawing.save: {name} must exceed twice the page margin ({2 * m:g} pt), "
+                    f"Drawing.save: {name} must exceed twice the margin ({2 * m:g} pt), "
                     f"got {v:g} pt"
                 )
         page = Page(margin=m, extent=self.page.extent, fit_width=fw, fit_height=fh)
@@ -345,6 +390,8 @@ class Drawing:
         *,
         width: str | float | None = None,
         height: str | float | None = None,
+        margin: str | float | None = None,
+        background: Any = _KEEP,
         format: str | None = None,
         **options: Any,
     ) -> Any:
@@ -352,7 +399,15 @@ class Drawing:
 
         ``width`` / ``height`` (optional) give the figure a physical size
         (``"8.5cm"``, ``"85mm"``, ``"3.3in"``, ``"240pt"``; see :meth:`sized`),
-        for every format; line widths and label sizes stay in pt.
+        for every format: the figure's ink (strokes with their widths, and
+        labels) is that size, plus ``margin`` (a length, default 0) on each
+        side; line widths and label sizes stay in pt.
+
+        ``background`` (optional) replaces the drawing's: a colour (any
+        ``color=`` value, ``"tab:blue"``, ``"#f4f4f4"``) painted over the
+        whole page in PNG, PDF and SVG, or None (also ``"none"``,
+        ``"transparent"``): a transparent PNG (RGBA) and nothing painted in
+        PDF and SVG.  White paints nothing in PDF and SVG either (the paper).
 
         ``.pdf`` (reportlab, vector), ``.png`` (pillow, anti-aliased; options
         ``dpi`` or ``size``), ``.svg`` (plain XML polylines) and any suffix a
@@ -368,7 +423,9 @@ class Drawing:
         """
         from .backends import get_backend
 
-        drawing = self.sized(width, height)
+        drawing = self.sized(width, height, margin)
+        if background is not _KEEP:
+            drawing = attrs.evolve(drawing, background=_background(background))
         if hasattr(path, "write"):
             from .display import save_to_fileobj
 
@@ -418,15 +475,16 @@ class Drawing:
 
         return to_bytes(self, "png", dpi=REPR_PNG_DPI)
 
-    def plot(self, ax: Any = None, *, axis: bool = False) -> Any:
-        """Draw the strokes into a matplotlib ``Axes`` (needs matplotlib) and return it.
+    def plot(self, ax: Any = None, *, axis: bool = False, legend: bool = False) -> Any:
+        """Draw the drawing into a matplotlib ``Axes`` (needs matplotlib) and return it.
 
-        See :func:`lgraph.display.plot`: line collections with the strokes'
-        colours, widths and dashes in pt, equal aspect, hidden parts below.
+        See :func:`lgraph.display.plot`: line collections by family with the
+        strokes' colours, widths and dashes in pt, hidden parts below, point
+        marks, labels as text (mathtext), ``legend=True`` for a legend by family.
         """
         from .display import plot
 
-        return plot(self, ax, axis=axis)
+        return plot(self, ax, axis=axis, legend=legend)
 
     def __repr__(self) -> str:
         w, h = self.page_size()

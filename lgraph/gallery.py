@@ -228,7 +228,7 @@ def render_figure(result: Any, tolerance: float | None = None) -> Any:
         h = max(y1 - y0, 1e-300)
         k = height / h
         shift = np.array([x - k * x0, -k * (y0 + y1) / 2])
-        strokes.extend(attrs.evolve(s, xy=s.xy * k + shift) for s in d.strokes)
+        strokes.extend(attrs.evolve(s, xy=s.xy * k + shift, curve=None) for s in d.strokes)
         labels.extend(attrs.evolve(lab, xy=lab.xy * k + shift) for lab in d.labels)
         x += k * (x1 - x0) + PANEL_GAP * height
     page = Page(extent=PAGE_EXTENT * min(len(drawings), 3))

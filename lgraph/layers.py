@@ -153,16 +153,20 @@ def layer_keys(strokes: Iterable[Any], mode: str | None = "family") -> list[str]
     return out
 
 
-def drawing_layers(drawing: Any, mode: str | None = "family") -> list[Layer]:
+def drawing_layers(
+    drawing: Any, mode: str | None = "family", runs: list[tuple[Any, ...]] | None = None
+) -> list[Layer]:
     """The layers of ``drawing`` in drawing order (see the module docstring).
 
     Only runs of at least two finite points are placed; each layer's runs
-    keep their drawing order.
+    keep their drawing order.  ``runs`` (optional) are the runs to group
+    instead of the page polylines: tuples whose second item is the stroke
+    (``(points, stroke, is_bezier)`` of :func:`lgraph.bezier.page_curve_runs`).
     """
     from .backends._common import page_runs
 
-    items = list(page_runs(drawing))
-    names = layer_keys([s for _, s in items], mode)
+    items = list(page_runs(drawing)) if runs is None else list(runs)
+    names = layer_keys([item[1] for item in items], mode)
     members: dict[str, list[Any]] = {}
     for name, item in zip(names, items):
         members.setdefault(name, []).append(item)
@@ -200,6 +204,7 @@ def join_continued(strokes: list, scale: float, keep_depth: bool) -> list:
                 xy=np.concatenate([s.xy, t.xy[1:]]),
                 xyz=np.concatenate([s.xyz, t.xyz[1:]]) if len(s.xyz) and len(t.xyz) else s.xyz,
                 uv=uv,
+                curve=None,  # two runs of samples: no one curve parameter
             )
         else:
             out.append(t)

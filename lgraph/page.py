@@ -26,7 +26,7 @@ from ._validate import finite_positive, nonnegative_finite
 if TYPE_CHECKING:
     from .drawing import Drawing
 
-__all__ = ["Page", "page_layout"]
+__all__ = ["Page", "page_layout", "stroke_ink"]
 
 
 @attrs.frozen
@@ -103,8 +103,9 @@ def page_layout(drawing: Drawing) -> tuple[float, np.ndarray, float, float]:
         h = w
     page = drawing.page
     m = page.margin
-    if drawing.labels:
-        return _layout_with_boxes(drawing, (x0, y0, x1, y1), w, h)
+    fit = page.fit_width is not None or page.fit_height is not None
+    if drawing.labels or fit:
+        return _layout_with_boxes(drawing, (x0, y0, x1, y1), w, h, ink=fit)
     if page.width is None:
         scale = page.extent / max(w, h)
         fits = [(page.fit_width, w), (page.fit_height, h)]
@@ -150,17 +151,53 @@ def _fit_scale(a: np.ndarray, lo: np.ndarray, hi: np.ndarray, avail: float) -> f
     return s_lo
 
 
+def stroke_ink(drawing: Drawing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each stroke's lower left and upper right points (projection
+    coordinates, ``(k, 2)`` each) and half its line width (pt, ``(k,)``): the
+    ink of a stroke with round caps reaches that far beyond its points.
+
+    >>> from lgraph.drawing import Drawing, Stroke
+    >>> s = Stroke(xy=np.array([[0.0, 1.0], [2.0, np.nan], [3.0, -1.0]]), xyz=np.zeros((3, 3)))
+    >>> lo, hi, half = stroke_ink(Drawing((s,)))
+    >>> lo.tolist(), hi.tolist(), half.tolist()
+    ([[0.0, -1.0]], [[3.0, 1.0]], [0.25])
+    """
+    strokes = [s for s in drawing.strokes if len(s.xy)]
+    if not strokes:
+        return np.empty((0, 2)), np.empty((0, 2)), np.empty(0)
+    pts = np.concatenate([np.asarray(s.xy, float).reshape(-1, 2) for s in strokes])
+    starts = np.cumsum([0] + [len(s.xy) for s in strokes[:-1]])
+    with np.errstate(invalid="ignore"):
+        lo = np.fmin.reduceat(pts, starts, axis=0)  # fmin: NaN points (breaks) ignored
+        hi = np.fmax.reduceat(pts, starts, axis=0)
+    half = np.array([s.style.width / 2 for s in strokes])
+    ok = np.isfinite(lo).all(axis=1) & np.isfinite(hi).all(axis=1)
+    return lo[ok], hi[ok], half[ok]
+
+
 def _layout_with_boxes(
-    drawing: Drawing, bounds: tuple[float, float, float, float], w: float, h: float
+    drawing: Drawing,
+    bounds: tuple[float, float, float, float],
+    w: float,
+    h: float,
+    ink: bool = False,
 ) -> tuple[float, np.ndarray, float, float]:
     """The layout when labels are present: their text boxes (in pt, not scaled)
-    must fit on the page as well as the strokes."""
+    must fit on the page as well as the strokes; with ``ink`` (a page of a
+    physical size) the strokes' half line widths too, so that the ink of the
+    figure spans the page less its margins."""
     x0, y0, x1, y1 = bounds
     labels = drawing.labels
     a = np.array([[x0, y0], [x1, y1]] + [lab.xy.tolist() for lab in labels])
     boxes = np.array([lab.box() for lab in labels]).reshape(-1, 4)
     lo = np.vstack([np.zeros((2, 2)), boxes[:, :2]])
     hi = np.vstack([np.zeros((2, 2)), boxes[:, 2:]])
+    if ink and drawing.window is None:
+        s_lo, s_hi, half = stroke_ink(drawing)
+        pad = np.repeat(half[:, None], 2, axis=1)
+        a = np.vstack([a, s_lo, s_hi])
+        lo = np.vstack([lo, -pad, -pad])
+        hi = np.vstack([hi, pad, pad])
     page = drawing.page
     m = page.margin
     if page.width is None:
@@ -176,6 +213,8 @@ def _layout_with_boxes(
         pw, ph = (high - low + 2 * m).tolist()
         if page.fit_width is not None and scale == fits[0] < math.inf:
             pw = page.fit_width  # exact (the bisection is within rounding)
+        if page.fit_height is not None and scale == fits[1] < math.inf:
+            ph = page.fit_height
         offset = m - low
     else:
         pw, ph = page.width, page.height

@@ -445,7 +445,7 @@ def _build(parts: list, flip: bool, strokes: list, *, pages_tol: float, scale: f
     if closing and np.linalg.norm(np.diff(xy, axis=0), axis=1).sum() * scale > 2 * pages_tol:
         xy, xyz = np.vstack([xy, xy[:1]]), np.vstack([xyz, xyz[:1]])
         uv = np.vstack([uv, uv[:1]]) if uv is not None else None
-    return attrs.evolve(s0, xy=xy, xyz=xyz, uv=uv, surface=surface)
+    return attrs.evolve(s0, xy=xy, xyz=xyz, uv=uv, surface=surface, curve=None)
 
 
 def _same_layout(drawing: Any, strokes: Any) -> Any:

@@ -29,7 +29,7 @@ from .families import FAMILIES, Contour, Family
 from .families.cache import family_batches
 from .geometry.transforms import IDENTITY, Transform
 from .page import Page
-from .style import OUTLINE, HiddenStyle, Style
+from .style import OUTLINE, HiddenStyle, Style, halo_gap
 from .surfaces._base import Surface
 
 if TYPE_CHECKING:
@@ -127,6 +127,10 @@ def _group_style(style: Style | dict[str, Style] | None) -> Style | None:
 class Scene:
     """A mutable collection of nodes; :meth:`render` turns it into a :class:`Drawing`.
 
+    ``Scene(halo=True)`` gives every label and point mark that sets no
+    ``halo`` of its own a halo (the lines cut around it, :mod:`lgraph.halos`);
+    a number is the gap in pt.
+
     >>> import lgraph as lg
     >>> inner = lg.Scene()
     >>> _ = inner.add(lg.Sphere(1), lg.ParameterLines(2, 4))
@@ -138,7 +142,13 @@ class Scene:
     (2, [[3.0, 0.0, 1.0], [-3.0, 0.0, 1.0]])
     """
 
-    def __init__(self) -> None:
+    def __init__(self, *, halo: bool | float = False) -> None:
+        #: the halo of the labels and point marks that set none
+        #: (``Label(halo=None)``, the default): False (none), True (a gap of
+        #: ``lgraph.style.HALO_GAP`` = 1.5 pt) or a gap in pt; the scene
+        #: rendered decides, for the members of its groups too
+        gap = halo_gap(halo, "Scene")
+        self.halo: float | bool = False if gap is None else gap
         self._entries: list[Node | Group | _Mark] = []
         self._unstyled: set[int] = set()  # ids of nodes added without a style
 

@@ -17,6 +17,7 @@ from typing import Any
 import attrs
 
 from ._validate import finite_positive
+from .colors import parse_color
 
 __all__ = [
     "Style",
@@ -26,48 +27,18 @@ __all__ = [
     "HiddenStyle",
     "HiddenStyles",
     "hidden_style_rule",
+    "HALO_GAP",
+    "halo_gap",
 ]
 
 #: Families drawn as a surface's outline (1.6 times as wide as its other lines).
-OUTLINE = ("contour", "boundary")
+OUTLINE = ("contour", "boundary", "arrow")
 
 
 def _color(value: Any) -> tuple[float, float, float]:
-    """Convert a colour to an RGB triple in [0, 1].
-
-    Accepts ``(r, g, b)`` floats in [0, 1], ``"#rrggbb"`` or a few names.
-    """
-    names = {
-        "black": (0.0, 0.0, 0.0),
-        "white": (1.0, 1.0, 1.0),
-        "red": (0.8, 0.0, 0.0),
-        "green": (0.0, 0.5, 0.0),
-        "blue": (0.0, 0.2, 0.8),
-        "gray": (0.5, 0.5, 0.5),
-        "grey": (0.5, 0.5, 0.5),
-    }
-    if isinstance(value, str):
-        v = value.strip().lower()
-        if v in names:
-            return names[v]
-        if v.startswith("#") and len(v) == 7:
-            try:
-                return tuple(int(v[i : i + 2], 16) / 255.0 for i in (1, 3, 5))  # type: ignore[return-value]
-            except ValueError:
-                pass
-        raise ValueError(
-            f"Style: color must be '#rrggbb', one of {sorted(names)} or an (r, g, b) "
-            f"triple in [0, 1], got {value!r}"
-        )
-    try:
-        rgb = tuple(float(c) for c in value)
-    except TypeError:
-        raise ValueError(
-            f"Style: color must be '#rrggbb' or an (r, g, b) triple in [0, 1], got {value!r}"
-        ) from None
-    if len(rgb) != 3 or not all(0.0 <= c <= 1.0 for c in rgb):
-        raise ValueError(f"Style: color must be an (r, g, b) triple in [0, 1], got {value!r}")
-    return rgb  # type: ignore[return-value]
+    """Convert a colour to an RGB triple in [0, 1]: a CSS or matplotlib name,
+    ``"#rrggbb"``, ``"#rgb"`` or ``(r, g, b)`` (:func:`lgraph.colors.parse_color`)."""
+    return parse_color(value)
 
 
 def _dash(value: Any) -> tuple[float, ...] | None:
@@ -91,6 +62,10 @@ def _dash(value: Any) -> tuple[float, ...] | None:
 class Style:
     """How a stroke looks: colour, line width (pt) and dash pattern (pt).
 
+    ``color`` is a CSS or matplotlib colour name (``"red"`` is ``#ff0000``,
+    ``"tab:blue"``; :data:`lgraph.colors.COLORS`), ``"#rrggbb"``, ``"#rgb"``
+    or an ``(r, g, b)`` triple in [0, 1].
+
     >>> Style(width=1.0).width
     1.0
     >>> Style(color="#ff0000").color
@@ -108,6 +83,38 @@ class Style:
     def evolve(self, **changes: Any) -> Style:
         """A copy with some fields changed."""
         return attrs.evolve(self, **changes)
+
+
+#: space between a label's ink box and its anchor point, in units of its size
+#: (TikZ's inner sep is about 0.33 em)
+LABEL_PAD = 0.25
+
+#: The gap in pt between a label's ink box (a point mark's dot) and the lines
+#: its halo cuts (``Label(..., halo=True)``; :mod:`lgraph.halos`)
+HALO_GAP = 1.5
+
+
+def halo_gap(value: Any, owner: str) -> float | None | bool:
+    """A ``halo=`` value checked: None (follow the default), False (none),
+    True (:data:`HALO_GAP`) or a gap in pt (a finite number >= 0).
+
+    >>> halo_gap(True, "Label"), halo_gap(2, "Label"), halo_gap(None, "Label")
+    (1.5, 2.0, None)
+    >>> halo_gap(-1, "Label")
+    Traceback (most recent call last):
+    ...
+    ValueError: Label: halo must be True, False, None or a gap in pt (a finite number >= 0), got -1
+    """
+    if value is None or value is False:
+        return value
+    if value is True:
+        return HALO_GAP
+    if isinstance(value, (int, float)) and math.isfinite(value) and value >= 0:
+        return float(value)
+    raise ValueError(
+        f"{owner}: halo must be True, False, None or a gap in pt (a finite number >= 0), "
+        f"got {value!r}"
+    )
 
 
 #: Default look of hidden parts (``hidden_lines=True``): thin and dashed.

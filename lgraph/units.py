@@ -30,13 +30,16 @@ UNITS: dict[str, float] = {
 _LENGTH = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z]*)\s*$")
 
 
-def length_pt(value: Any, name: str = "width") -> float:
-    """A positive finite length in points.
+def length_pt(value: Any, name: str = "width", *, zero: bool = False) -> float:
+    """A positive finite length in points (``zero=True``: or 0, for margins).
 
     ``value`` is a number (points) or a string ``"<number><unit>"`` with a unit of
     :data:`UNITS` (``pt``, ``mm``, ``cm``, ``in``); spaces are allowed.
 
     Raises ``ValueError`` naming ``name`` for anything else.
+
+    >>> length_pt("0mm", "margin", zero=True)
+    0.0
 
     >>> length_pt(" 25.4 mm ")
     72.0
@@ -46,22 +49,23 @@ def length_pt(value: Any, name: str = "width") -> float:
     ValueError: width must be a positive length such as '8.5cm' (units pt, ...), got '8.5 parsecs'
     """
     allowed = ", ".join(UNITS)
+    kind = "non-negative" if zero else "positive"
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         points = float(value)
     elif isinstance(value, str) and (m := _LENGTH.match(value)):
         unit = m.group(2).lower() or "pt"
         if unit not in UNITS:
             raise ValueError(
-                f"{name} must be a positive length such as '8.5cm' (units {allowed}), got {value!r}"
+                f"{name} must be a {kind} length such as '8.5cm' (units {allowed}), got {value!r}"
             )
         points = float(m.group(1)) * UNITS[unit]
     else:
         raise ValueError(
-            f"{name} must be a positive length such as '8.5cm' (units {allowed}), got {value!r}"
+            f"{name} must be a {kind} length such as '8.5cm' (units {allowed}), got {value!r}"
         )
-    if not (math.isfinite(points) and points > 0):
+    if not (math.isfinite(points) and (points > 0 or (zero and points == 0))):
         raise ValueError(
-            f"{name} must be a positive length such as '8.5cm' (units {allowed}), got {value!r}"
+            f"{name} must be a {kind} length such as '8.5cm' (units {allowed}), got {value!r}"
         )
     return points
 

@@ -198,7 +198,10 @@ def test_an_option_no_chosen_backend_takes_is_still_an_error(
     assert (
         f"{path}:{foo}: save.foo: unknown option 'foo' for .pdf and .png output; allowed: " in err
     )
-    assert "compress, dpi, height, precision, size, supersample, title, width" in err
+    assert (
+        "background, compress, curves, dpi, height, margin, precision, size, supersample, text, "
+        "title, width" in err
+    )
     assert f"{path}:{foo + 1}: save.dpi: expected a number" in err  # every problem at once
     assert "save.layers: unknown option 'layers'" in err  # .svg takes it, not chosen here
     assert "warning" not in err and "Traceback" not in err
@@ -213,7 +216,9 @@ def test_with_one_output_an_unknown_option_is_an_error_as_before(
     err = capsys.readouterr().err
     line = _line_of(path, "title")
     assert err.startswith(f"lgraph render: error: {path}:{line}: save.title: unknown option")
-    assert "for .png output; allowed: dpi, height, size, supersample, width" in err
+    assert (
+        "for .png output; allowed: background, dpi, height, margin, size, supersample, width" in err
+    )
     # two outputs of the same backend: no other backend takes it, still an error
     argv = ["render", str(path), "-o", str(tmp_path / "a.png"), "-o", str(tmp_path / "b.png")]
     assert main(argv) == 2
@@ -411,4 +416,4 @@ def test_an_arrow_with_a_label_in_a_scene_file(tmp_path):
     scene, projector, _ = lg.load_scene_file(path)
     drawing = scene.render(projector)
     assert [lab.text for lab in drawing.labels] == ["$N$"]
-    assert {s.family for s in drawing.strokes} <= {"contour", "boundary"}
+    assert {s.family for s in drawing.strokes} == {"arrow"}  # its outline, no boundary

@@ -186,7 +186,7 @@ def test_style_per_family_and_contour_width():
     )
     d = scene.render(lg.ParallelProjector(direction=(0, -1, 0.3)))
     first = [s for s in d.strokes if s.surface is scene.nodes[0].surface]
-    assert all(s.style.color == (0.8, 0.0, 0.0) for s in first if s.family == "u1")
+    assert all(s.style.color == (1.0, 0.0, 0.0) for s in first if s.family == "u1")  # CSS red
     assert all(s.style.color == (0.0, 0.0, 0.0) for s in first if s.family == "u2")
     second = [s for s in d.strokes if s.surface is scene.nodes[1].surface]
     assert {s.style.width for s in second if s.family == "contour"} == {1.6}

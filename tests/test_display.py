@@ -147,7 +147,8 @@ def test_plot_draws_every_stroke_with_its_style(drawing):
         want = sorted(np.concatenate([s.xy for s in drawing.strokes]).round(9).tolist())
         assert got == want
         styles = {(s.style.width, s.style.dash, s.style.color) for s in drawing.strokes}
-        assert len(cols) == len(styles)
+        # one collection per family, visibility and style (a legend by family)
+        assert len(cols) == len({(s.family, s.visible, s.style) for s in drawing.strokes})
         for c in cols:
             width = float(c.get_linewidths()[0])
             [(w, dash, color)] = [t for t in styles if t[0] == width]
@@ -158,8 +159,9 @@ def test_plot_draws_every_stroke_with_its_style(drawing):
             else:  # matplotlib scales dashes by the width; what it draws is in pt
                 np.testing.assert_allclose(pattern, dash)
         assert ax.get_aspect() == 1.0
-        hidden = [c for c in cols if c.get_label() == "hidden"]
-        visible = [c for c in cols if c.get_label() == "visible"]
+        hidden = [c for c in cols if c.get_label().endswith(" (hidden)")]
+        visible = [c for c in cols if not c.get_label().endswith(" (hidden)")]
+        assert hidden and visible
         assert max(c.get_zorder() for c in hidden) < min(c.get_zorder() for c in visible)
         x0, y0, x1, y1 = drawing.bounds()
         lo, hi = ax.get_xlim()

@@ -28,7 +28,7 @@ from hypothesis import strategies as st
 
 import lgraph as lg
 from lgraph import _text
-from lgraph._text import MAX_LABEL_DEPTH, MAX_LABEL_LENGTH, check_tex, quote, text_shape
+from lgraph._text import MAX_LABEL_DEPTH, MAX_LABEL_LENGTH, check_tex, check_text, quote, text_shape
 from lgraph.backends.svg import write_svg
 from lgraph.drawing import Drawing, PlacedLabel, Stroke
 from lgraph.page import Page
@@ -175,16 +175,20 @@ def test_nesting_at_the_limit_typesets_even_from_a_deep_stack(opening, closing):
 
 def test_recursion_in_mathtext_becomes_a_value_error():
     chain = "$" + r"\hat " * 150 + "x$"  # no group at all: a chain of accents
+    # a Label does not typeset (TeX may do it, for TikZ); lgraph does where it
+    # draws the glyphs: there the RecursionError is a ValueError
     with pytest.raises(ValueError, match="nests too deeply for mathtext") as e:
-        lg.Label(chain, at=(0, 0, 0))
+        text_shape(chain, 10.0)
     assert e.type is ValueError and e.value.__suppress_context__  # no RecursionError shown
+    with pytest.raises(ValueError, match="nests too deeply for mathtext"):
+        check_text("Label", chain)
     assert lg.Label("$\\hat{x}_1$", at=(0, 0, 0)).text  # mathtext still works afterwards
 
 
 def test_mathtext_out_of_memory_becomes_a_value_error():
     with mock.patch("matplotlib.textpath.TextPath", side_effect=MemoryError):
         with pytest.raises(ValueError, match="Label: text needs more memory than mathtext"):
-            lg.Label("$x_{memory}$", at=(0, 0, 0))
+            text_shape("$x_{memory}$", 10.0)
 
 
 def test_text_that_skipped_the_label_is_limited_where_it_is_laid_out():

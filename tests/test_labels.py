@@ -243,7 +243,8 @@ def test_sized_page_without_labels_is_exact():
     d = lg.Drawing(strokes=(s,))
     w, h = d.sized(width="10cm").page_size()
     assert w == pytest.approx(10 / 2.54 * 72, rel=1e-12)
-    assert (h - 36) == pytest.approx((w - 36) / 3, rel=1e-12)
+    # no margin: the ink (points plus half the 0.5 pt line width each side) spans the page
+    assert (h - 0.5) == pytest.approx((w - 0.5) / 3, rel=1e-12)
 
 
 # -- ink where the text is -----------------------------------------------------------
@@ -339,7 +340,6 @@ def test_supported_tex(tex):
     [
         ({"text": ""}, "text must not be empty"),
         ({"text": "$x_1"}, "unbalanced \\$"),
-        ({"text": "$\\kapa$"}, "unknown TeX.*kapa"),
         ({"at": (0, float("nan"), 0)}, "at must be three finite numbers"),
         ({"at": (0, float("inf"), 0)}, "at must be three finite numbers"),
         ({"size": -2}, "size must be a positive"),
@@ -361,9 +361,11 @@ def test_bad_label_in_a_scene_file(tmp_path):
     path.write_text(
         '[projector]\nkind = "parallel"\nazimuth = 0\nelevation = 0\n'
         '[[object]]\nsurface = "sphere"\nparams = { r = 1 }\n'
-        '[[labels]]\ntext = "$\\\\foo$"\nat = [0, 0, 1]\n'
+        '[[labels]]\ntext = "$\\\\input{x}$"\nat = [0, 0, 1]\n'
     )
-    with pytest.raises(lg.SceneFileError, match=r"s.toml:8: labels\[0\]: .*unknown TeX.*foo"):
+    # TeX that reaches files is refused at load (mathtext's unknown commands are
+    # not: they may be the document's macros, for TikZ; tests/test_figures_tex.py)
+    with pytest.raises(lg.SceneFileError, match=r"s.toml:8: labels\[0\]: .*\\input"):
         lg.load_scene_file(path)
     path.write_text(
         '[projector]\nkind = "parallel"\nazimuth = 0\nelevation = 0\n'

@@ -192,7 +192,7 @@ def test_png_stroke_wider_than_the_image_fills_it(tmp_path: Path) -> None:
     with pytest.warns(UserWarning, match="covers the whole image"):
         d.save(tmp_path / "wide.png")
     img = np.asarray(Image.open(tmp_path / "wide.png"))
-    assert (img[..., 0] == 204).all() and (img[..., 1] == 0).all()
+    assert (img[..., 0] == 255).all() and (img[..., 1] == 0).all()  # CSS red
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         _png_drawing(lg.Style(width=1e300)).save(tmp_path / "huge.pdf")  # vector: as given

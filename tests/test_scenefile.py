@@ -356,7 +356,7 @@ def test_save_options_of_a_registered_backend_are_checked_and_passed(tmp_path, m
     assert "save.standalone: expected true or false" in str(e.value)
     assert (
         "save.pens: unknown option 'pens' for .fake output; "
-        "allowed: height, precision, standalone, width" in str(e.value)
+        "allowed: background, height, margin, precision, standalone, width" in str(e.value)
     )
     pens = write(tmp_path, BASE + "\n[save]\npens = 4\n")
     assert load_scene_file(pens, output="f.decl")[2]["save"] == {"pens": 4}

@@ -72,7 +72,7 @@ def backend_options(suffix: str) -> dict[str, Any]:
     first use); raises ValueError for an unknown suffix.
 
     >>> backend_options(".svg")
-    {'precision': 3, 'layers': 'family'}
+    {'precision': 3, 'layers': 'family', 'curves': 'polyline', 'text': 'outlines'}
     >>> sorted(backend_options(".png"))
     ['dpi', 'size', 'supersample']
     """

@@ -21,6 +21,8 @@ from .._validate import positive_finite  # noqa: F401 - the backends' check (re-
 __all__ = [
     "check_options",
     "check_precision",
+    "curve_options",
+    "BEZIER_PRECISION",
     "background_rgb",
     "hex_color",
     "fmt_num",
@@ -55,6 +57,51 @@ def check_precision(writer: str, precision: Any) -> int:
     ):
         raise ValueError(f"{writer}: precision must be an integer in 0..6, got {precision!r}")
     return int(precision)
+
+
+#: the deviation of ``curves="bezier"`` from the exact curves when
+#: ``precision`` gives no length: 0.01 mm on the page
+BEZIER_PRECISION = "0.01mm"
+
+
+def curve_options(writer: str, curves: Any, precision: Any) -> tuple[int, float | None]:
+    """``curves=`` and ``precision=`` of a vector writer checked: the number
+    of decimals of the coordinates and, for ``curves="bezier"``, the largest
+    deviation from the exact curves in pt (None: polylines).
+
+    ``precision`` is a number of decimals (an int in 0..6) or, for Bézier
+    curves, a length on the page (``"0.01mm"``; default
+    :data:`BEZIER_PRECISION`), which also sets the decimals (to a tenth of it).
+
+    >>> d, tol = curve_options("write_svg", "bezier", "0.01mm")
+    >>> d, round(tol, 6)
+    (3, 0.028346)
+    >>> curve_options("write_svg", "polyline", 2)
+    (2, None)
+    >>> curve_options("write_svg", "splines", 3)
+    Traceback (most recent call last):
+    ...
+    ValueError: write_svg: curves must be 'polyline' or 'bezier', got 'splines'
+    """
+    import math
+
+    from ..units import length_pt
+
+    if curves not in ("polyline", "bezier"):
+        raise ValueError(f"{writer}: curves must be 'polyline' or 'bezier', got {curves!r}")
+    if isinstance(precision, str):
+        if curves != "bezier":
+            raise ValueError(
+                f"{writer}: precision must be an integer in 0..6 (decimals) with polylines; "
+                f"a length is the deviation of curves='bezier', got {precision!r}"
+            )
+        tol = length_pt(precision, f"{writer}: precision")
+        decimals = min(6, max(1, math.ceil(-math.log10(tol / 10))))
+        return decimals, tol
+    decimals = check_precision(writer, precision)
+    if curves == "bezier":
+        return decimals, length_pt(BEZIER_PRECISION)
+    return decimals, None
 
 
 def background_rgb(drawing: Any) -> tuple[float, float, float] | None:

@@ -23,7 +23,60 @@ from .._text import CLOSEPOLY, CURVE4, FALLBACK_FONT, LINETO, MOVETO, cubic_segm
 from .._text import text_shape as _shape
 from ._common import fmt_num, hex_color, xml_attr, xml_text
 
-__all__ = ["path_ops", "pdf_labels", "svg_labels", "png_labels"]
+__all__ = ["path_ops", "pdf_labels", "svg_labels", "png_labels", "TEXT_MODES", "check_text_mode"]
+
+#: ``text=`` of the PDF and SVG writers: glyph outlines (the same look
+#: everywhere, the default) or real text (searchable, copyable, editable)
+TEXT_MODES = ("outlines", "text")
+
+#: PDF base fonts of real text, by glyph style; characters outside their
+#: encoding come from Symbol (Greek, math operators)
+_PDF_FONTS = {"roman": "Times-Roman", "italic": "Times-Italic", "bold": "Times-Bold"}
+
+
+def check_text_mode(writer: str, text: Any) -> str:
+    """Validate ``text=``: ``"outlines"`` or ``"text"``.
+
+    >>> check_text_mode("write_pdf", "glyphs")
+    Traceback (most recent call last):
+    ...
+    ValueError: write_pdf: text must be 'outlines' or 'text', got 'glyphs'
+    """
+    if text not in TEXT_MODES:
+        raise ValueError(f"{writer}: text must be 'outlines' or 'text', got {text!r}")
+    return text
+
+
+def _pdf_font(char: str, style: str) -> str | None:
+    """The base font that can show ``char`` (None: none of them can)."""
+    import reportlab.pdfbase.rl_codecs  # noqa: F401 - registers the codecs
+
+    for font, codec in ((_PDF_FONTS[style], "winansi"), ("Symbol", "symbol")):
+        try:
+            char.encode(codec)
+        except (UnicodeError, LookupError):
+            continue
+        return font
+    return None
+
+
+def _pdf_text(canvas: Any, origin: np.ndarray, lab: Any) -> bool:
+    """Draw ``lab`` as real text (base fonts); False if a character has no
+    base font (the label is then drawn as outlines)."""
+    from .._text import text_glyphs
+
+    layout = text_glyphs(lab.text, lab.size)
+    fonts = [_pdf_font(c, st) if c.strip() else "Times-Roman" for _, _, c, st, _ in layout.glyphs]
+    if None in fonts:  # (plain text is one run: all of it in one font, or outlines)
+        return False
+    canvas.setFillColorRGB(*lab.style.color)
+    x0, y0 = float(origin[0]), float(origin[1])
+    for (x, y, c, _, size), font in zip(layout.glyphs, fonts):
+        canvas.setFont(font, size)
+        canvas.drawString(x0 + x, y0 + y, c)
+    for x, y, w, h in layout.rects:
+        canvas.rect(x0 + x, y0 + y, w, h, stroke=0, fill=1)
+    return True
 
 
 def path_ops(
@@ -67,9 +120,12 @@ def path_ops(
     return template % tuple(values.tolist())
 
 
-def pdf_labels(drawing: Any, canvas: Any) -> None:
-    """Append the labels to a reportlab canvas (outlines filled, or base-font text)."""
+def pdf_labels(drawing: Any, canvas: Any, text: str = "outlines") -> None:
+    """Append the labels to a reportlab canvas (outlines filled, or base-font
+    text: always with ``text="text"``, else where matplotlib is missing)."""
     for origin, lab in drawing.page_labels():
+        if text == "text" and _pdf_text(canvas, origin, lab):
+            continue
         shape = _shape(lab.text, lab.size)
         rgb = " ".join(fmt_num(c) for c in lab.style.color)
         if shape.string is not None:
@@ -82,8 +138,33 @@ def pdf_labels(drawing: Any, canvas: Any) -> None:
             canvas.addLiteral(f"{rgb} rg\n{ops}f")
 
 
-def svg_labels(drawing: Any, height: float, precision: int) -> list[str]:
-    """One ``<g>`` per label: a filled ``<path>`` of its outline, or a ``<text>``."""
+def _svg_text(origin: np.ndarray, lab: Any, height: float, color: str) -> str:
+    """``lab`` as one ``<text>``, a ``<tspan>`` a glyph (mathtext's layout),
+    and ``<rect>`` fraction bars."""
+    from .._text import text_glyphs
+
+    layout = text_glyphs(lab.text, lab.size)
+    spans = []
+    for x, y, c, style, size in layout.glyphs:
+        look = {"italic": ' font-style="italic"', "bold": ' font-weight="bold"'}.get(style, "")
+        spans.append(
+            f'<tspan x="{fmt_num(origin[0] + x)}" y="{fmt_num(height - origin[1] - y)}" '
+            f'font-size="{fmt_num(size)}"{look}>{xml_text(c)}</tspan>'
+        )
+    rects = "".join(
+        f'<rect x="{fmt_num(origin[0] + x)}" y="{fmt_num(height - origin[1] - y - h)}" '
+        f'width="{fmt_num(w)}" height="{fmt_num(h)}" fill="{color}"/>'
+        for x, y, w, h in layout.rects
+    )
+    return (
+        f'<text font-family="STIXGeneral, Times New Roman, Times, serif" fill="{color}" '
+        f'xml:space="preserve">{"".join(spans)}</text>{rects}'
+    )
+
+
+def svg_labels(drawing: Any, height: float, precision: int, text: str = "outlines") -> list[str]:
+    """One ``<g>`` per label: a filled ``<path>`` of its outline, or a
+    ``<text>`` (``text="text"``, or plain text where matplotlib is missing)."""
     out = []
     for origin, lab in drawing.page_labels():
         shape = _shape(lab.text, lab.size)
@@ -92,7 +173,9 @@ def svg_labels(drawing: Any, height: float, precision: int) -> list[str]:
             f'<g class="label" data-text={xml_attr(lab.text)} '
             f'data-visible="{"true" if lab.visible else "false"}">'
         )
-        if shape.string is not None:
+        if text == "text":
+            body = _svg_text(origin, lab, height, color)
+        elif shape.string is not None:
             x, y = fmt_num(origin[0]), fmt_num(height - origin[1])
             body = (
                 f'<text x="{x}" y="{y}" font-family="Times New Roman, Times, serif" '

@@ -28,7 +28,7 @@ import numpy as np
 from ._common import (
     background_rgb,
     check_options,
-    check_precision,
+    curve_options,
     fmt_num,
     page_runs,
 )
@@ -88,8 +88,10 @@ def write_pdf(
     path: str | os.PathLike[str],
     *,
     compress: bool | int = True,
-    precision: int = 3,
+    precision: int | str = 3,
     title: str = "lgraph",
+    curves: str = "polyline",
+    text: str = "outlines",
     **options: Any,
 ) -> None:
     """Write ``drawing`` as a one-page vector PDF.
@@ -105,13 +107,23 @@ def write_pdf(
         Deflate-compress the page content stream: True is zlib level 1 (a
         good speed/size balance for coordinate text), an int 1..9 picks the
         level, False or 0 writes it uncompressed.
-    precision : int, default 3
+    precision : int or length, default 3
         Decimals of the coordinates in points (3 is 1/72000 inch); the
         coordinates are written as integers in units of ``10**-precision``
         pt under a ``cm`` scaling matrix, and line widths and dash lengths
-        scaled to match.
+        scaled to match.  With ``curves="bezier"`` a length (``"0.01mm"``,
+        the default) is the largest deviation from the exact curves.
     title : str, default "lgraph"
         Document title in the PDF metadata (the creator is always "lgraph").
+    curves : "polyline" (default) or "bezier"
+        ``"bezier"`` writes the strokes that know their exact curve (those a
+        render makes) as cubic Bézier segments within ``precision`` of it
+        (:mod:`lgraph.bezier`), at any page size; others stay polylines.
+    text : "outlines" (default) or "text"
+        Labels as filled glyph outlines (the same look in every format) or
+        as real text that ``pdftotext`` finds and readers copy: the base
+        fonts Times and Symbol, mathematics laid out by mathtext (STIX
+        metrics); a label with a character those fonts lack stays outlines.
 
     Notes
     -----
@@ -128,13 +140,16 @@ def write_pdf(
     ValueError
         For a bad ``precision`` or ``compress``.
     """
-    check_options("write_pdf", options, ("compress", "precision", "title"))
-    precision = check_precision("write_pdf", precision)
+    check_options("write_pdf", options, ("compress", "precision", "title", "curves", "text"))
+    from ._labels import check_text_mode
+
+    text = check_text_mode("write_pdf", text)
+    precision, deviation = curve_options("write_pdf", curves, precision)
     level = _compress_level(compress)
 
     pw, ph = drawing.page_size()
     canvas = new_canvas(path, (pw, ph), level, title)
-    draw_page(canvas, drawing, precision)
+    draw_page(canvas, drawing, precision, deviation, text)
     canvas.showPage()
     canvas.save()
 
@@ -159,8 +174,15 @@ def new_canvas(path: Any, pagesize: tuple[float, float], level: int, title: str)
     return canvas
 
 
-def draw_page(canvas: Any, drawing: Any, precision: int) -> None:
-    """Draw ``drawing``'s strokes (and background) onto the canvas's current page."""
+def draw_page(
+    canvas: Any,
+    drawing: Any,
+    precision: int,
+    deviation: float | None = None,
+    text: str = "outlines",
+) -> None:
+    """Draw ``drawing``'s strokes (and background) onto the canvas's current page
+    (as Bézier curves within ``deviation`` pt of the exact curves, when given)."""
     pw, ph = drawing.page_size()
     bg = background_rgb(drawing)
     if bg is not None and bg != _WHITE:
@@ -172,8 +194,13 @@ def draw_page(canvas: Any, drawing: Any, precision: int) -> None:
     # pass: per stroke "x y m", "x y l" for the rest, "S"; style operators
     # (which contain no '%') only where the style changes.
     canvas.addLiteral("q")  # the strokes' scaling matrix ends before the labels
-    runs = list(page_runs(drawing))
-    values = np.concatenate([pts.ravel() for pts, _ in runs]) if runs else np.empty(0)
+    if deviation is None:
+        runs = [(pts, s, False) for pts, s in page_runs(drawing)]
+    else:
+        from ..bezier import page_curve_runs
+
+        runs = page_curve_runs(drawing, deviation)
+    values = np.concatenate([pts.ravel() for pts, _, _ in runs]) if runs else np.empty(0)
     unit = 10.0**precision
     if len(values) and np.abs(values).max() * unit >= _INT_LIMIT:  # a huge page
         unit, f = 1.0, f"%.{precision}f"
@@ -185,9 +212,10 @@ def draw_page(canvas: Any, drawing: Any, precision: int) -> None:
             k = fmt_num(1 / unit, precision)
             canvas.addLiteral(f"{k} 0 0 {k} 0 0 cm")
     move, line = f"{f} {f} m\n", f"{f} {f} l\n"
+    curve = f"{f} {f} {f} {f} {f} {f} c\n"
     color = width = dash = None
     template: list[str] = []
-    for pts, stroke in runs:
+    for pts, stroke, bezier in runs:
         style = stroke.style
         if style.color != color:
             color = style.color
@@ -198,11 +226,12 @@ def draw_page(canvas: Any, drawing: Any, precision: int) -> None:
         if style.dash != dash:
             dash = style.dash
             template.append(_dash_op(dash, unit) + "\n")
-        template.append(move + line * (len(pts) - 1) + "S\n")
+        body = curve * ((len(pts) - 1) // 3) if bezier else line * (len(pts) - 1)
+        template.append(move + body + "S\n")
     if runs:
         canvas.addLiteral("".join(template) % tuple(values.tolist()))
     canvas.addLiteral("Q")
     if getattr(drawing, "labels", ()):
         from ._labels import pdf_labels
 
-        pdf_labels(drawing, canvas)
+        pdf_labels(drawing, canvas, text)

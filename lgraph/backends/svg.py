@@ -20,13 +20,13 @@ them as one pen each.  Each polyline carries ``data-family`` and
 ...     path = os.path.join(tmp, "a.svg")
 ...     write_svg(d.sized(width="50.8mm"), path, precision=1)
 ...     root = ET.parse(path).getroot()
->>> root.get("width"), root.get("height"), root.get("viewBox")
-('50.8mm', '25.4mm', '0 0 144 72')
+>>> root.get("width"), root.get("height"), root.get("viewBox")  # the ink, round caps too
+('50.8mm', '25.4882mm', '0 0 144 72.25')
 >>> layer = root.find("{http://www.w3.org/2000/svg}g")
 >>> layer.get("{http://www.inkscape.org/namespaces/inkscape}label"), layer.get("stroke-width")
 ('1 u1', '0.5')
 >>> layer.find("{http://www.w3.org/2000/svg}polyline").get("points")
-'0.0,72.0 144.0,0.0'
+'0.2,72.0 143.8,0.2'
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ from ..units import to_unit
 from ._common import (
     background_rgb,
     check_options,
-    check_precision,
+    curve_options,
     fmt_num,
     format_points,
     hex_color,
@@ -66,6 +66,25 @@ def _polyline(pts: np.ndarray, stroke: Any, precision: int, style_attrs: str) ->
     )
 
 
+def _path(pts: np.ndarray, stroke: Any, precision: int, style_attrs: str) -> str:
+    """A run of Bézier control points (``3k + 1``) as one ``<path>``."""
+    f = f"%.{precision}f"
+    pair = f"{f},{f}"
+    k = (len(pts) - 1) // 3
+    d = ("M" + pair + (" C" + " ".join([pair] * 3)) * k) % tuple(pts.ravel().tolist())
+    return (
+        f"<path{style_attrs} data-family={xml_attr(stroke.family)} "
+        f'data-visible="{"true" if stroke.visible else "false"}" d="{d}"/>\n'
+    )
+
+
+def _element(run: tuple[Any, ...], a: np.ndarray, b: np.ndarray, precision: int, attrs_: str):
+    pts, s = run[0] * a + b, run[1]
+    if len(run) > 2 and run[2]:
+        return _path(pts, s, precision, attrs_)
+    return _polyline(pts, s, precision, attrs_)
+
+
 def _style_attrs(style: Any) -> str:
     dash = ""
     if style.dash:
@@ -81,8 +100,10 @@ def write_svg(
     drawing: Any,
     path: str | os.PathLike[str],
     *,
-    precision: int = 3,
+    precision: int | str = 3,
     layers: str | None = "family",
+    curves: str = "polyline",
+    text: str = "outlines",
     **options: Any,
 ) -> None:
     """Write ``drawing`` as an SVG file.
@@ -93,11 +114,22 @@ def write_svg(
         The display list.
     path : path-like
         File to write (whatever its suffix).
-    precision : int, default 3
-        Decimals of the point coordinates (in pt).
+    precision : int or length, default 3
+        Decimals of the point coordinates (in pt); with ``curves="bezier"``
+        a length (``"0.01mm"``, the default) is the largest deviation from
+        the exact curves.
     layers : "family" (default), "surface", "occlusion" or None
         One Inkscape layer per family (hidden parts in a layer ``hidden``), per
         surface, or no groups at all (every polyline styled on its own).
+    curves : "polyline" (default) or "bezier"
+        ``"bezier"``: the strokes that know their exact curve become
+        ``<path d="M ... C ...">`` of cubic Bézier segments within
+        ``precision`` of it (:mod:`lgraph.bezier`; vpype and Inkscape read
+        them), the others stay polylines.
+    text : "outlines" (default) or "text"
+        Labels as filled glyph outlines or as ``<text>`` (a ``<tspan>`` a
+        glyph, mathtext's layout in the STIX fonts): editable and searchable.
+
     Notes
     -----
     Every stroke becomes one ``<polyline>`` (inside its layer's ``<g>``, which
@@ -115,8 +147,11 @@ def write_svg(
     ValueError
         For a bad ``precision`` or ``layers`` (before anything is written).
     """
-    check_options("write_svg", options, ("precision", "layers"))
-    precision = check_precision("write_svg", precision)
+    check_options("write_svg", options, ("precision", "layers", "curves", "text"))
+    from ._labels import check_text_mode
+
+    text = check_text_mode("write_svg", text)
+    precision, deviation = curve_options("write_svg", curves, precision)
     mode = check_layer_mode(layers, "write_svg")
     pw, ph = drawing.page_size()
     w, h = fmt_num(pw), fmt_num(ph)
@@ -131,21 +166,27 @@ def write_svg(
         out.append(f'<rect x="0" y="0" width="{w}" height="{h}" fill="{hex_color(bg)}"/>\n')
     # page points (y up) to SVG user units (y down)
     a, b = np.array([1.0, -1.0]), np.array([0.0, ph])
+    if deviation is None:
+        runs: list[tuple[Any, ...]] = list(page_runs(drawing))
+    else:
+        from ..bezier import page_curve_runs
+
+        runs = page_curve_runs(drawing, deviation)
     if mode is None:
-        for pts, s in page_runs(drawing):
-            out.append(_polyline(pts * a + b, s, precision, _style_attrs(s.style)))
-    groups = drawing_layers(drawing, mode) if mode else []
+        for run in runs:
+            out.append(_element(run, a, b, precision, _style_attrs(run[1].style)))
+    groups = drawing_layers(drawing, mode, runs) if mode else []
     for layer in groups:
         out.append(
             f'<g inkscape:groupmode="layer" inkscape:label={xml_attr(layer.label)} '
             f'id="layer{layer.number}"{_style_attrs(layer.style)}>\n'
         )
-        out.extend(_polyline(pts * a + b, s, precision, "") for pts, s in layer.runs)
+        out.extend(_element(run, a, b, precision, "") for run in layer.runs)
         out.append("</g>\n")
     if getattr(drawing, "labels", ()):
         from ._labels import svg_labels
 
-        labels = svg_labels(drawing, ph, precision)
+        labels = svg_labels(drawing, ph, precision, text)
         if mode is not None:  # one more layer, so plotter tools see one group for them all
             number = len(groups) + 1
             labels = [

@@ -36,7 +36,7 @@ import numpy as np
 
 from .._text import check_text, quote
 from .._validate import _is_real
-from ..style import ANCHORS, Style, _color
+from ..style import ANCHORS, Style, _color, halo_gap
 
 __all__ = ["Label", "Point", "ANCHORS"]
 
@@ -90,6 +90,12 @@ class Label:
         Draw the label even where its anchor is hidden.
     direction : 3 numbers, optional
         Used by ``anchor="auto"``.
+    halo : bool, float or None, default None
+        Cut the lines under the text: every stroke is split where it enters
+        the text's ink box grown by a gap (True: ``lgraph.style.HALO_GAP``,
+        1.5 pt; a number: that gap in pt), geometrically, so the gap is in
+        every backend, plotters included (:mod:`lgraph.halos`).  None: the
+        scene's default (``Scene(halo=...)``, no halo unless set); False: none.
     """
 
     text: str = attrs.field()
@@ -100,10 +106,12 @@ class Label:
     color: tuple[float, float, float] | None = attrs.field(default=None, kw_only=True)
     always: bool = attrs.field(default=False, kw_only=True)
     direction: np.ndarray | None = attrs.field(default=None, kw_only=True)
+    halo: bool | float | None = attrs.field(default=None, kw_only=True)
 
     def __attrs_post_init__(self) -> None:
         name = _name(self)
-        check_text("Label", self.text)
+        object.__setattr__(self, "halo", halo_gap(self.halo, name))
+        check_text("Label", self.text, typeset=False)  # TeX may hold the document's macros
         set_ = object.__setattr__
         set_(self, "at", _point3(name, "at", self.at))
         try:
@@ -166,6 +174,10 @@ class Point:
         style, else black.
     always : bool, default False
         Draw it even where it is hidden.
+    halo : bool, float or None, default None
+        Cut the lines around the dot: a disc of its radius plus a gap (True:
+        1.5 pt, or a number of pt), as for :class:`Label`; None: the scene's
+        default.
 
     >>> import lgraph as lg
     >>> lg.Point((1, 0, 0), size=-1)
@@ -178,8 +190,10 @@ class Point:
     size: float = attrs.field(default=3.0, kw_only=True)
     style: Style | None = attrs.field(default=None, kw_only=True)
     always: bool = attrs.field(default=False, kw_only=True)
+    halo: bool | float | None = attrs.field(default=None, kw_only=True)
 
     def __attrs_post_init__(self) -> None:
+        object.__setattr__(self, "halo", halo_gap(self.halo, "Point"))
         if not (_is_real(self.size) and math.isfinite(self.size) and self.size > 0):
             raise ValueError(
                 f"Point: size must be a positive finite number of pt, got {self.size!r}"

@@ -155,9 +155,10 @@ class Arrow(Surface):
     """A thin 3-D arrow from ``tail`` to ``tip``: a cylinder shaft and a cone head.
 
     Drawn by its outline only (shaft and head silhouettes and the rim of the
-    head: its :meth:`!contour`); add it with ``scene.add(arrow, lg.Contour(),
-    contour=False)`` so that no parameter lines are drawn.  It hides what is
-    behind it and is hidden like any surface.
+    head: its :meth:`!contour`), as strokes of the family ``"arrow"`` (the
+    style key ``{"arrow": lg.Style(...)}``, the TikZ style ``lgraph/arrow``):
+    ``scene.add(arrow)`` draws just that, no parameter lines and no patch
+    boundary.  It hides what is behind it and is hidden like any surface.
 
     ``label`` (optional) is text put just beyond the tip, on the side the
     arrow points to in the picture (``"$N$"``), or a :class:`~lgraph.Label`
@@ -179,6 +180,7 @@ class Arrow(Surface):
     shaft_radius: float = _pos("Arrow")
     label: Any = attrs.field(default=None, kw_only=True)
     default_families = ()
+    outline_family = "arrow"
 
     def __attrs_post_init__(self) -> None:
         L = float(np.linalg.norm(self.tip - self.tail))
@@ -245,6 +247,10 @@ class Arrow(Surface):
         return lo, hi
 
     def lines_of_curvature(self, n1: int, n2: int) -> list[CurveBatch]:
+        return []
+
+    def boundary(self) -> list[CurveBatch]:
+        """None: the tail's disc and the tip are not lines of the figure."""
         return []
 
     def _local(self, x: np.ndarray, vector: bool = False) -> np.ndarray:

@@ -37,6 +37,7 @@ import numpy as np
 
 from .. import _tolerance as tol
 from .._validate import as_number, positive_finite
+from ..bezier import CurveRef, unwrapped
 from ..drawing import Drawing, Stroke
 from ..geometry.transforms import Transform
 from ..page import Page, _page
@@ -132,6 +133,8 @@ def _strokes(
     ends_k = total[1::2].tolist()  # where each stroke's samples end
     bounds = list(zip([0, *ends_k[:-1]], ends_k))
     xy, xyz, uv = ([g[i:j] for i, j in bounds] for g in (s.xy[idx], s.xyz[idx], s.uv[idx]))
+    lens = seg_len.reshape(-1, 2).sum(axis=1)  # the strokes' parameters, increasing:
+    tu = unwrapped(s.t[idx], lens, (s.t1 - s.t0)[run_cid[rows]])
     # a style depends on the batch's own style, the node and the family: the
     # same for a batch (or a node's contour) in every view
     styles: dict[tuple[int, int, str], Style] = {}
@@ -148,6 +151,8 @@ def _strokes(
         batch, node, _, first_id = s.parts[p]
         names = batch.curve_family
         family = batch.family if names is None else names[c - first_id]
+        if family == "contour":  # an arrow's outline is drawn as family "arrow"
+            family = getattr(batch.surface, "outline_family", "contour")
         if dep:
             if (family, dep) not in hidden_styles:
                 hidden_styles[family, dep] = rule(family, dep)
@@ -159,17 +164,12 @@ def _strokes(
             style = styles.get(key)
             if style is None:
                 style = styles[key] = batch.style or nodes[node].style_for(family)
+        # the exact curve of the stroke (lgraph.bezier: curves="bezier" output)
+        ref = (batch, c - first_id, s.parts[p].transform, s.views.projectors[v])
+        curve = CurveRef(*ref, tu[slice(*bounds[k])], s.t0[c], s.t1[c], s.closed[c])
+        uv_k = None if s.group[p] in s.no_uv else uv[k]
         out[v].append(
-            Stroke(
-                xy=xy[k],
-                xyz=xyz[k],
-                uv=None if s.group[p] in s.no_uv else uv[k],
-                visible=not dep,
-                family=family,
-                surface=batch.surface,
-                style=style,
-                occlusion=dep,
-            )
+            Stroke(xy[k], xyz[k], uv_k, not dep, family, batch.surface, style, dep, curve=curve)
         )
     return out
 
@@ -453,7 +453,8 @@ def _with_marks(
 
         if vis is None:
             vis, view = Occlusion(nodes, projector), 0
-        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, rule, view)
+        halo = getattr(scene, "halo", False)
+        placed, dots = place_marks(labels, points, projector, vis, hidden_lines, rule, view, halo)
         strokes = strokes + dots
     return Drawing(strokes=strokes, page=page, labels=placed)
 
@@ -477,7 +478,10 @@ def _warn_unused_styles(s: Samples, nodes: tuple[Node, ...]) -> None:
     drawn: dict[int, set[str]] = {}
     for batch, node, _, _ in s.parts:
         names = batch.curve_family
-        drawn.setdefault(node, set()).update([batch.family] if names is None else set(names))
+        got = {batch.family} if names is None else set(names)
+        if "contour" in got:
+            got.add(getattr(batch.surface, "outline_family", "contour"))
+        drawn.setdefault(node, set()).update(got)
     for k, node in enumerate(nodes):
         if isinstance(node.style, dict):
             unused = sorted(set(node.style) - drawn.get(k, set()) - {"default", *OUTLINE})

@@ -91,10 +91,17 @@ def place_marks(
     hidden_lines: bool,
     rule: Callable[[str, int], Style | None],
     view: int = 0,
+    halo: float | bool = False,
 ) -> tuple[list[PlacedLabel], list[Stroke]]:
     """Placed labels and point strokes of a scene's (world-coordinate) marks,
     seen by ``projector``, view ``view`` of ``occlusion``; hidden ones styled
-    by ``rule(family, occlusion)`` (families ``"label"`` and ``"point"``)."""
+    by ``rule(family, occlusion)`` (families ``"label"`` and ``"point"``);
+    ``halo`` is the halo of the marks that set none (``Scene(halo=...)``)."""
+
+    def gap(own: float | bool | None) -> float | None:
+        value = halo if own is None else own
+        return None if value is False else float(value)
+
     placed: list[PlacedLabel] = []
     for lab, p, q, k, hs in _placed(
         "label", labels, projector, occlusion, hidden_lines, view, rule
@@ -106,7 +113,11 @@ def place_marks(
             anchor = auto_anchor(*(np.asarray(d) - q).tolist())
         color = lab.color if lab.color is not None else (0.0, 0.0, 0.0)
         style = Style(color=hs.color if k else color)
-        placed.append(PlacedLabel(lab.text, q, p, not k, anchor, lab.offset, lab.size, style))
+        placed.append(
+            PlacedLabel(
+                lab.text, q, p, not k, anchor, lab.offset, lab.size, style, halo=gap(lab.halo)
+            )
+        )
     strokes: list[Stroke] = []
     for pt, p, q, k, hs in _placed("point", points, projector, occlusion, hidden_lines, view, rule):
         base = hs if k else (pt.style or Style())
@@ -119,6 +130,7 @@ def place_marks(
                 family="point",
                 style=style,
                 occlusion=k,
+                halo=gap(getattr(pt, "halo", None)),
             )  # fmt: skip
         )
     return placed, strokes

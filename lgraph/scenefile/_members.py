@@ -207,7 +207,14 @@ def _family(key: Key, f: Any, surface: Any) -> Any:
     return family
 
 
-_LABEL = ("text", "at", "offset", "anchor", "size", "color", "always")
+_LABEL = ("text", "at", "offset", "anchor", "size", "color", "always", "halo")
+
+
+def _halo(key: Key, v: Any) -> bool | float:
+    """``halo = true | false | <gap in pt>``."""
+    if isinstance(v, bool):
+        return v
+    return _number(key, v)
 
 
 def _label(key: Key, t: dict[str, Any]) -> Any:
@@ -229,6 +236,8 @@ def _label(key: Key, t: dict[str, Any]) -> Any:
         kw["color"] = _color_value(key + ("color",), t["color"])
     if "always" in t:
         kw["always"] = _boolean(key + ("always",), t["always"])
+    if "halo" in t:
+        kw["halo"] = _halo(key + ("halo",), t["halo"])
     return _call(key, "label", lambda **kw: Label(text, **kw), kw)
 
 
@@ -236,7 +245,7 @@ def _point(key: Key, t: dict[str, Any]) -> Any:
     from ..objects import Point
     from ..style import Style
 
-    _only(key, t, ("at", "size", "color", "always"))
+    _only(key, t, ("at", "size", "color", "always", "halo"))
     kw: dict[str, Any] = {}
     if "size" in t:
         kw["size"] = _number(key + ("size",), t["size"], positive=True)
@@ -245,6 +254,8 @@ def _point(key: Key, t: dict[str, Any]) -> Any:
                             {"color": _color_value(key + ("color",), t["color"])})  # fmt: skip
     if "always" in t:
         kw["always"] = _boolean(key + ("always",), t["always"])
+    if "halo" in t:
+        kw["halo"] = _halo(key + ("halo",), t["halo"])
     at = _vector(key + ("at",), _required(key, t, "at"))
     return _call(key, "point", lambda **kw: Point(at, **kw), kw)
 

@@ -138,26 +138,29 @@ def _page(key: Key, p: dict[str, Any]) -> Any:
 _SAVE: dict[str, Callable[[Key, Any], Any]] = {
     "dpi": lambda k, v: _number(k, v, positive=True),
     "supersample": lambda k, v: _int(k, v, 1, 8),
-    "precision": lambda k, v: _int(k, v, 0, 6),
+    # decimals, or (curves = "bezier") the deviation as a length
+    "precision": lambda k, v: _length(k, v) and v if isinstance(v, str) else _int(k, v, 0, 6),
     "title": lambda k, v: _string(k, v),
     "width": lambda k, v: _length(k, v),
     "height": lambda k, v: _length(k, v),
+    "margin": lambda k, v: _length(k, v, zero=True),
+    "background": lambda k, v: _string(k, v),
 }
 
 
-def _length(key: Key, v: Any) -> float:
+def _length(key: Key, v: Any, zero: bool = False) -> float:
     from ..units import length_pt
 
     if isinstance(v, bool) or not isinstance(v, (str, int, float)):
         raise _Invalid(key, f"expected a length such as '8.5cm', got {_show(v)}")
     try:
-        return length_pt(v, "length")
+        return length_pt(v, "length", zero=zero)
     except ValueError as exc:
         raise _Invalid(key, str(exc)) from None
 
 
 #: options of Drawing.save itself, for every format
-_DRAWING_SAVE = ("width", "height")
+_DRAWING_SAVE = ("width", "height", "margin", "background")
 
 
 def _int(key: Key, v: Any, lo: int, hi: int) -> int:

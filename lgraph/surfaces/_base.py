@@ -210,6 +210,11 @@ class Surface:
     #: Families drawn when a node is added with none (besides the contour).
     default_families: tuple[str, ...] = ("parameter_lines",)
 
+    #: The family name its contour's strokes get (and its style key): figure
+    #: objects such as :class:`~lgraph.Arrow` say ``"arrow"``.  Visibility
+    #: treats the curves as a contour whatever the name.
+    outline_family: str = "contour"
+
     # -- what it is ---------------------------------------------------------
     @property
     def domain(self) -> Domain:  # pragma: no cover - abstract

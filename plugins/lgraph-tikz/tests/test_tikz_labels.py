@@ -62,8 +62,7 @@ def test_text_that_would_break_the_node_is_refused(tmp_path: Path, text: str, wh
 
 
 def test_escaped_characters_and_harmless_control_words_pass_unchanged(tmp_path: Path) -> None:
-    # (document macros such as \vx pass the TeX check, lgraph._text.check_tex, but
-    # the page layout still measures every label with mathtext, which knows none)
+    # (document macros such as \vx pass too: tests/test_figures_tex.py compiles them)
     texts = [r"$\{u\} \in \mathbb{R}$ 50\% \\ \in put", r"$\frac{1}{2}\sqrt[3]{x}$"]
     write_tikz(_drawing(*texts), tmp_path / "f.tex")
     tex = (tmp_path / "f.tex").read_text(encoding="utf-8")

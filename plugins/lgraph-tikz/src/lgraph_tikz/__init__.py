@@ -6,6 +6,7 @@ Registered through the entry point group ``lgraph.backends`` (see
     drawing.save("figure.tex")                       # \input{figure.tex} in a document
     drawing.save("figure.tex", width="8.5cm")        # scaled to 8.5 cm wide
     drawing.save("figure.tex", standalone=True)      # a complete document of its own
+    drawing.save("figure.tex", curves="bezier")      # exact curves (lgraph.bezier)
 
 or ``lgraph render fig.toml -o fig.tex``.  Coordinates are in cm.  Every
 layer of the drawing (:mod:`lgraph.layers`: one per family, hidden parts in
@@ -33,22 +34,23 @@ Layer names keep letters, digits and ``._+-`` (others become ``-``).
 >>> from lgraph import Drawing, Page, Stroke
 >>> s = Stroke(xy=np.array([[0.0, 0.0], [2.0, 1.0]]), xyz=np.zeros((2, 3)), family="u1")
 >>> d = Drawing(strokes=(s,), page=Page(margin=0, extent=72))
->>> with tempfile.TemporaryDirectory() as tmp:
+>>> with tempfile.TemporaryDirectory() as tmp:  # the ink, round caps included, is 5.08 cm wide
 ...     write_tikz(d, os.path.join(tmp, "a.tex"), width="5.08cm")
 ...     text = open(os.path.join(tmp, "a.tex")).read()
 >>> print(text, end="")
-% lgraph figure, 5.08 x 2.54 cm; restyle with \tikzset{lgraph/<layer>/.style={...}}
+% lgraph figure, 5.08 x 2.5488 cm; restyle with \tikzset{lgraph/<layer>/.style={...}}
 % layers: u1
 \providecommand\lgraphstyle[2]{\pgfkeysifdefined{/tikz/lgraph/#1/.@cmd}{}{\tikzset{lgraph/#1/.style={#2}}}}%
 \begin{tikzpicture}[x=1cm, y=1cm, line cap=round, line join=round]
 \lgraphstyle{u1}{draw={rgb,255:red,0;green,0;blue,0}, line width=0.5bp}
-\useasboundingbox (0,0) rectangle (5.08,2.54);
-\draw[lgraph/u1] (0.000,0.000) -- (5.080,2.540);
+\useasboundingbox (0,0) rectangle (5.08,2.5488);
+\draw[lgraph/u1] (0.009,0.009) -- (5.071,2.540);
 \end{tikzpicture}%
 """
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from typing import Any
@@ -202,6 +204,7 @@ def write_tikz(
     standalone: bool = False,
     width: float | str | None = None,
     layers: str = "family",
+    curves: str = "polyline",
 ) -> None:
     r"""Write ``drawing`` as a ``tikzpicture`` (see the module docstring).
 
@@ -211,8 +214,10 @@ def write_tikz(
         The display list.
     path : path-like
         File to write.
-    precision : int, default 3
-        Decimals of the coordinates in cm (0 to 6; 3 is 0.01 mm).
+    precision : int or length, default 3
+        Decimals of the coordinates in cm (0 to 6; 3 is 0.01 mm); with
+        ``curves="bezier"`` a length (``"0.01mm"``, the default) is the
+        largest deviation from the exact curves.
     standalone : bool, default False
         Write a complete LaTeX document whose page is exactly the picture
         (it needs only LaTeX's base classes and TikZ).
@@ -224,6 +229,10 @@ def write_tikz(
     layers : "family" (default) or "surface"
         What the named styles are: one per family of curves or per surface
         (hidden parts always ``lgraph/hidden``).
+    curves : "polyline" (default) or "bezier"
+        ``"bezier"``: the strokes that know their exact curve are drawn as
+        ``.. controls (a) and (b) ..`` cubic segments within ``precision``
+        of it (:mod:`lgraph.bezier`); the others stay polylines.
 
     Raises
     ------
@@ -231,6 +240,14 @@ def write_tikz(
         For a bad option or a label whose text is not safe TeX (see the module
         docstring), before anything is written.
     """
+    deviation = None
+    if curves not in ("polyline", "bezier"):
+        raise ValueError(f"write_tikz: curves must be 'polyline' or 'bezier', got {curves!r}")
+    if curves == "bezier":
+        deviation = length_pt("0.01mm")
+        if isinstance(precision, str):
+            deviation = length_pt(precision, "write_tikz: precision")
+            precision = min(6, max(3, math.ceil(-math.log10(deviation / _CM / 10))))
     if isinstance(precision, bool) or not isinstance(precision, int) or not 0 <= precision <= 6:
         raise ValueError(f"write_tikz: precision must be an integer from 0 to 6, got {precision!r}")
     if not isinstance(standalone, bool):
@@ -243,7 +260,12 @@ def write_tikz(
     fmt = f"(%.{precision}f,%.{precision}f)"
     labels = _labels(drawing, fmt)  # checked before anything is written
     pw, ph = drawing.page_size()
-    groups = drawing_layers(drawing, layers)
+    runs = None
+    if deviation is not None:
+        from lgraph.bezier import page_curve_runs
+
+        runs = page_curve_runs(drawing, deviation)
+    groups = drawing_layers(drawing, layers, runs)
     names = [_style_name(g.name) for g in groups]
     w_cm, h_cm = pw / _CM, ph / _CM
     head = [
@@ -264,9 +286,14 @@ def write_tikz(
     head.append(f"\\useasboundingbox (0,0) rectangle ({_num(w_cm)},{_num(h_cm)});\n")
     body = []
     for name, g in zip(names, groups):
-        for pts, _ in g.runs:
-            run = np.asarray(pts, float) / _CM
-            coords = " -- ".join([fmt] * len(run)) % tuple(run.ravel().tolist())
+        for item in g.runs:
+            run = np.asarray(item[0], float) / _CM
+            if len(item) > 2 and item[2]:  # Bézier control points, 3k + 1
+                k = (len(run) - 1) // 3
+                pattern = fmt + f" .. controls {fmt} and {fmt} .. {fmt}" * k
+            else:
+                pattern = " -- ".join([fmt] * len(run))
+            coords = pattern % tuple(run.ravel().tolist())
             body.append(f"\\draw[lgraph/{name}] {coords};\n")
     body.extend(labels)
     tail = ["\\end{tikzpicture}%\n"]
