@@ -51,9 +51,9 @@ def _fast_derivatives(surface: Surface, u1: np.ndarray, u2: np.ndarray, x: np.nd
     h1, h2 = 1e-7 * d.span(0), 1e-7 * d.span(1)
     lo1, hi1 = d.u1
     lo2, hi2 = d.u2
-    # step inward at the upper end of non-periodic parameters
-    s1 = np.where(~d.periodic[0] & (u1 + h1 > hi1), -h1, h1)
-    s2 = np.where(~d.periodic[1] & (u2 + h2 > hi2), -h2, h2)
+    # step inward at the upper end of parameters that are not glued
+    s1 = np.where((not d.glued[0]) & (u1 + h1 > hi1), -h1, h1)
+    s2 = np.where((not d.glued[1]) & (u2 + h2 > hi2), -h2, h2)
     x1 = (surface.point(u1 + s1, u2) - x) / s1[:, None]
     x2 = (surface.point(u1, u2 + s2) - x) / s2[:, None]
     return x1, x2
@@ -131,7 +131,7 @@ def _in_cell(
         w = c1[:, i] - c0[:, i]
         lo, hi = c0[:, i] - margin * w, c1[:, i] + margin * w
         x = uv[:, i]
-        if d.periodic[i]:
+        if d.periodic[i] is True:
             span = d.span(i)
             x = lo + np.mod(x - lo, span)
         inside &= (x >= lo) & (x <= hi)
