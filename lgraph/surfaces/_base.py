@@ -12,7 +12,6 @@ from __future__ import annotations
 import functools
 from typing import TYPE_CHECKING, Any
 
-import attrs
 import numpy as np
 
 from .._own import CONTOUR, OFF, ON

@@ -227,7 +227,7 @@ class Domain:
         return c
 
     def _affine(self, copy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The maps ``x -> S x + t`` (``S`` signs, diagonal) from the rectangle to copies ``copy``."""
+        """The maps ``x -> S x + t`` (``S`` signs) from the rectangle to copies ``copy``."""
         zero = np.zeros(np.shape(copy))
         t = self.unwrap(zero, copy)
         return self.unwrap(zero + 1.0, copy) - t, t
