@@ -130,7 +130,9 @@ class KleinBottle(_Formulas):
     ValueError: KleinBottle: form must be one of 'bottle', 'figure8', got 'torus'
     """
 
-    form: str = attrs.field(default="bottle", validator=one_of("KleinBottle", ("bottle", "figure8")))
+    form: str = attrs.field(
+        default="bottle", validator=one_of("KleinBottle", ("bottle", "figure8"))
+    )
     radius: float = attrs.field(
         default=2.0, converter=as_number, validator=finite_positive("KleinBottle")
     )
