@@ -62,6 +62,12 @@ NEAR_CELLS = 2
 GRID_SHIFT = 0.3819660112501051
 #: Gauss-Newton steps projecting evaluated points onto the curve
 PROJECT_STEPS = 4
+#: crossings in one cell whose partners are more than this many cells apart lie
+#: on different pairs of sheets (a triple point): they are not joined
+PARTNER_CELLS = 4
+#: branches reaching less far than this (relative to the surface size: invisible) are
+#: dropped: pieces at a triple or pinch point where a preimage is a pole
+MIN_EXTENT = 1e-4
 #: accepted crossing: |x(a) - x(b)| below this, relative to the surface size
 ACCEPT_RTOL = 1e-11
 
@@ -267,18 +273,30 @@ def _trace(points: dict, surface: Surface) -> list[tuple[np.ndarray, bool]]:
     rows, cols = [], []
     starts = np.flatnonzero(np.r_[True, cells[1:] != cells[:-1]])
     ends = np.r_[starts[1:], len(cells)]
+    d = surface.domain
+    h = np.array([d.span(0), d.span(1)]) / points["n"]
+    b_all = points["b"]
+
+    def partners_apart(i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        """Crossings whose partners lie on different sheets (as at a triple
+        point): more than ``PARTNER_CELLS`` cells apart, across seams."""
+        bi, bj = b_all[i], b_all[j]
+        return np.abs((d.nearest_image(bi, bj) - bi) / h).max(axis=-1) > PARTNER_CELLS
+
     for s0, s1 in zip(starts.tolist(), ends.tolist()):  # one step per crossed cell
         k = pts[s0:s1]
         if len(k) == 2:
-            rows.append(k[0])
-            cols.append(k[1])
+            if not partners_apart(k[:1], k[1:])[0]:
+                rows.append(k[0])
+                cols.append(k[1])
         elif len(k) > 2:
             dist = np.linalg.norm(a[k][:, None] - a[k][None], axis=2)
+            dist[partners_apart(k[:, None], k[None, :])] = np.inf
             np.fill_diagonal(dist, np.inf)
             used: set[int] = set()
             for flat in np.argsort(dist, axis=None).tolist():
                 x, y = divmod(flat, len(k))
-                if x in used or y in used or x >= y:
+                if x in used or y in used or x >= y or not np.isfinite(dist[x, y]):
                     continue
                 used |= {x, y}
                 rows.append(k[x])
@@ -360,16 +378,16 @@ class _Branch:
     def __init__(self, surface: Surface, a: np.ndarray, b: np.ndarray, closed: bool) -> None:
         from scipy.interpolate import CubicSpline, make_interp_spline
 
-        from ..surfaces._seams import unjump
-
         d = surface.domain
         scale = np.array([d.span(0), d.span(1)])
-        a, b = unjump(d, a), unjump(d, b)
         if closed:
-            a = np.vstack([a, a[:1]])
-            b = np.vstack([b, b[:1]])
-            a[-1] = unjump(d, a[-2:])[-1]
-            b[-1] = unjump(d, b[-2:])[-1]
+            a, b = np.vstack([a, a[:1]]), np.vstack([b, b[:1]])
+        # both preimages continuous in the cover (either may cross a seam)
+        a, b = d.continuous(a), d.continuous(b)
+        if closed and any(d.twisted):
+            # closing through a twist: not a loop of the cover, drawn open
+            # (its two ends are one point of the surface)
+            closed = bool((d.deck(a[-1], a[0])[0] > 0).all() and (d.deck(b[-1], b[0])[0] > 0).all())
         t = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(a / scale, axis=0), axis=1))])
         keep = np.concatenate([[True], np.diff(t) > 1e-9 * max(t[-1], 1e-300)])
         a, b, t = a[keep], b[keep], t[keep]
@@ -389,6 +407,15 @@ class _Branch:
     def __call__(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         ramp = (t / self.length)[:, None]
         return self.sa(t) + ramp * self.da, self.sb(t) + ramp * self.db
+
+
+def _extent(surface: Surface, br: _Branch) -> float:
+    """How far a branch reaches in space, relative to the surface's size (16
+    points; about 0 for one that stays at a triple point, whose preimage is a
+    pole's row of parameters)."""
+    x = surface.points(surface.domain.wrap(br(np.linspace(0, br.length, 16))[0], clip=False))
+    with np.errstate(invalid="ignore"):
+        return float(np.nan_to_num(np.nanmax(np.ptp(x, axis=0)))) / surface.size
 
 
 @attrs.frozen
@@ -413,7 +440,7 @@ class SelfIntersection(Family):
             _Branch(surface, a_all[i], b_all[i], closed)
             for i, closed in _one_preimage(lines, pts, h)
         ]
-        branches = [br for br in branches if br.length > 0]  # none of zero length (a triple point)
+        branches = [br for br in branches if br.length > 0 and _extent(surface, br) > MIN_EXTENT]
         if not branches:
             return []
 

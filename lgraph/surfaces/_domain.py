@@ -252,6 +252,19 @@ class Domain:
         sq, tq = self._affine(kq)
         return sk * sq, tk - sk * sq * tq
 
+    def continuous(self, p: Any) -> np.ndarray:
+        """A polyline ``(n, 2)`` of points given anywhere in the cover (say
+        wrapped into the rectangle) moved, point by point, into the copies
+        that make it continuous: each point the copy nearest to the one
+        before it (the deck maps composed, all points at once)."""
+        p = np.asarray(p, float)
+        if len(p) < 2 or not any(self.glued):
+            return p.copy()
+        s, t = self.deck(p[:-1], p[1:])  # p[i] -> near p[i - 1]
+        S = np.cumprod(np.vstack([np.ones((1, 2)), s]), axis=0)
+        T = np.vstack([np.zeros((1, 2)), np.cumsum(S[:-1] * t, axis=0)])
+        return S * p + T
+
     def nearest_image(self, p: Any, q: Any) -> np.ndarray:
         """The copies of points ``q`` nearest to cover points ``p`` (both
         ``(..., 2)``, broadcast; distance in spans, max norm): where a curve

@@ -149,7 +149,7 @@ class KleinBottle(_Formulas):
 
 # the chart of the projective plane: the unit sphere's point p(u, v)
 _PX, _PY, _PZ = "(sin(u)*cos(v))", "(sin(u)*sin(v))", "cos(u)"
-_RP2 = dict(u=(0, "pi"), v=(0, "pi"), periodic=(False, "twisted"), poles=(True, False))
+_RP2 = dict(u=(0, "pi"), v=("pi/24", "25*pi/24"), periodic=(False, "twisted"), poles=(True, False))
 
 
 @attrs.frozen
