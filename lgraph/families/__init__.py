@@ -132,6 +132,8 @@ def parameter_line_batches(
     if not n1 + n2:
         return []
     const = np.concatenate([c1, c2])
+    # lines along a twisted parameter start half-way (their ends are not on the seam)
+    start = [d.range(j)[0] + 0.5 * d.span(j) * d.twisted[j] for j in (0, 1)]
 
     def uv(idx: np.ndarray, t: np.ndarray) -> np.ndarray:
         first = idx < n1  # a line u1 = const, running along u2
@@ -146,8 +148,8 @@ def parameter_line_batches(
         CurveBatch.from_uv(
             surface,
             family1 if n1 else family2,
-            np.concatenate([np.full(n1, d.u2[0]), np.full(n2, d.u1[0])]),
-            np.concatenate([d.u2[0] + turns1 * d.span(1), d.u1[0] + turns2 * d.span(0)]),
+            np.concatenate([np.full(n1, start[1]), np.full(n2, start[0])]),
+            np.concatenate([start[1] + turns1 * d.span(1), start[0] + turns2 * d.span(0)]),
             uv,
             closed=np.concatenate([closed1, closed2]),
             curve_family=None if family1 == family2 else names,
