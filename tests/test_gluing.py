@@ -217,9 +217,10 @@ def test_asymptotic_lines_cross_the_seam():
         n = m.normal(uv[1:-1, 0], uv[1:-1, 1])
         # normal curvature ~ 0: second differences (in arc length) normal to N
         t = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
-        dd = np.diff(np.diff(x, axis=0) / np.diff(t)[:, None], axis=0) / (
-            0.5 * (t[2:] - t[:-2])
-        )[:, None]
+        dd = (
+            np.diff(np.diff(x, axis=0) / np.diff(t)[:, None], axis=0)
+            / (0.5 * (t[2:] - t[:-2]))[:, None]
+        )
         assert np.abs(np.einsum("ij,ij->i", dd, n)).max() < 2e-2
 
 
@@ -230,9 +231,10 @@ def test_geodesic_crosses_the_seam():
         x, uv = _near_crossing(s, i)
         n = m.normal(uv[1:-1, 0], uv[1:-1, 1])
         t = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
-        dd = np.diff(np.diff(x, axis=0) / np.diff(t)[:, None], axis=0) / (
-            0.5 * (t[2:] - t[:-2])
-        )[:, None]
+        dd = (
+            np.diff(np.diff(x, axis=0) / np.diff(t)[:, None], axis=0)
+            / (0.5 * (t[2:] - t[:-2]))[:, None]
+        )
         tangential = dd - np.einsum("ij,ij->i", dd, n)[:, None] * n
         assert np.linalg.norm(tangential, axis=1).max() < 2e-2
 
@@ -289,3 +291,26 @@ periodic = ["twisted", false]
     path.write_text(text.replace('["twisted", false]', '["no", false]'))
     with pytest.raises(lg.SceneFileError, match="twisted"):
         lg.load_scene_file(path)
+
+
+def test_deck_maps_at_the_seam_to_the_last_bit():
+    # a point one unit in the last place outside the twisted edge and one on
+    # it are the same point: the map between them is the identity
+    d = lg.RomanSurface().domain
+    lo = d.u2[0]
+    p = np.array([0.4706261, np.nextafter(lo, -1.0)])
+    q = np.array([0.4706261, lo])
+    S, t = d.deck(p, q)
+    np.testing.assert_allclose(S * q + t, p, atol=1e-15)
+
+
+def test_roman_surface_contour_lies_on_the_contour():
+    s = lg.RomanSurface()
+    view = lg.ParallelProjector(direction=(1.0, 0.8, 0.6))
+    w = _unit(np.array([1.0, 0.8, 0.6]))
+    for b in s.contour(view):
+        for k in range(len(b)):
+            t = np.linspace(b.t0[k], b.t1[k], 1000)
+            x, uv = b.evaluate(np.full(len(t), k), t)
+            assert np.abs(s.normal(uv[:, 0], uv[:, 1]) @ w).max() < 1e-6
+            assert np.linalg.norm(np.diff(x, axis=0), axis=1).max() < 0.02 * s.size

@@ -243,8 +243,11 @@ class Domain:
         offsets = [(a, b) for a in (-1, 0, 1) for b in (-1, 0, 1)
                    if (a == 0 or self.glued[0]) and (b == 0 or self.glued[1])]  # fmt: skip
         # the copy holding p and its neighbours in the plane (their numbers
-        # are not neighbours across a twist)
-        copies = np.stack([self.cells(p + np.array(o) * span)[1] for o in offsets])
+        # are not neighbours across a twist), found from the copy's centre
+        # (far from the edges where rounding decides)
+        mid = np.array([sum(self.u1), sum(self.u2)]) / 2
+        centre = self.unwrap(np.broadcast_to(mid, p.shape), self.cells(p)[1])
+        copies = np.stack([self.cells(centre + np.array(o) * span)[1] for o in offsets])
         cand = self.unwrap(np.broadcast_to(qb, copies.shape), copies)
         best = np.argmin(np.abs((cand - p) / span).max(axis=-1), axis=0)
         k = np.take_along_axis(copies, best[None, ..., None], axis=0)[0]
