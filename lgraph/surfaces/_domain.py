@@ -7,7 +7,7 @@ projective plane).  Curves, contours and field lines are traced in the
 *cover*, the plane tiled by copies of the rectangle, and mapped back by
 :meth:`Domain.wrap`; a cover point in copy ``(k1, k2)`` is the rectangle's
 point reflected in ``u_j`` for every odd ``k_i`` of a twisted ``u_i``
-(docs/mathematics.rst, "Gluings").
+(docs/gluings.rst).
 """
 
 from __future__ import annotations
