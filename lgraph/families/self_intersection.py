@@ -62,9 +62,11 @@ NEAR_CELLS = 2
 GRID_SHIFT = 0.3819660112501051
 #: Gauss-Newton steps projecting evaluated points onto the curve
 PROJECT_STEPS = 4
-#: crossings in one cell whose partners are more than this many cells apart lie
-#: on different pairs of sheets (a triple point): they are not joined
-PARTNER_CELLS = 4
+#: crossings in one cell whose partners are more than this fraction of the grid
+#: apart lie on different pairs of sheets (a triple point): they are not joined
+#: (partners of one branch move up to about 1/6 of the grid a cell, on a tube
+#: crossing itself; the Roman surface's triple point 1/2)
+PARTNER_FRACTION = 0.25
 #: branches reaching less far than this (relative to the surface size: invisible) are
 #: dropped: pieces at a triple or pinch point where a preimage is a pole
 MIN_EXTENT = 1e-4
@@ -279,9 +281,10 @@ def _trace(points: dict, surface: Surface) -> list[tuple[np.ndarray, bool]]:
 
     def partners_apart(i: np.ndarray, j: np.ndarray) -> np.ndarray:
         """Crossings whose partners lie on different sheets (as at a triple
-        point): more than ``PARTNER_CELLS`` cells apart, across seams."""
+        point): more than ``PARTNER_FRACTION`` of the grid apart, across seams."""
         bi, bj = b_all[i], b_all[j]
-        return np.abs((d.nearest_image(bi, bj) - bi) / h).max(axis=-1) > PARTNER_CELLS
+        gap = np.abs((d.nearest_image(bi, bj) - bi) / h).max(axis=-1)
+        return gap > PARTNER_FRACTION * points["n"]
 
     for s0, s1 in zip(starts.tolist(), ends.tolist()):  # one step per crossed cell
         k = pts[s0:s1]

@@ -202,7 +202,7 @@ class Domain:
             span = hi - lo
             with np.errstate(invalid="ignore"):
                 q = np.floor((b[..., i] - lo) / span)
-            k[..., i] = np.nan_to_num(q).astype(int)
+            k[..., i] = np.where(np.abs(q) < 2**62, q, 0).astype(int)  # NaN, inf: copy 0
             b[..., i] = lo + np.mod(b[..., i] - lo, span)
             if twisted[i]:
                 j = 1 - i
