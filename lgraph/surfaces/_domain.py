@@ -203,7 +203,8 @@ class Domain:
             with np.errstate(invalid="ignore"):
                 q = np.floor((b[..., i] - lo) / span)
             k[..., i] = np.where(np.abs(q) < 2**62, q, 0).astype(int)  # NaN, inf: copy 0
-            b[..., i] = lo + np.mod(b[..., i] - lo, span)
+            with np.errstate(invalid="ignore"):
+                b[..., i] = lo + np.mod(b[..., i] - lo, span)
             if twisted[i]:
                 j = 1 - i
                 odd = (k[..., i] % 2) == 1
