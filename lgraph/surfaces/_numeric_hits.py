@@ -147,7 +147,8 @@ def _local_second_root(
     x1, x2 = surface.derivatives(uv0[:, 0], uv0[:, 1])
     x11, x12, x22 = surface.second_derivatives(uv0[:, 0], uv0[:, 1])
     n = _cross(x1, x2)
-    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
     vn = np.einsum("ij,ij->i", v, n)
     g11 = np.einsum("ij,ij->i", x1, x1)
     g12 = np.einsum("ij,ij->i", x1, x2)
@@ -155,13 +156,13 @@ def _local_second_root(
     b1 = np.einsum("ij,ij->i", x1, v)
     b2 = np.einsum("ij,ij->i", x2, v)
     g = g11 * g22 - g12 * g12
-    a1 = (g22 * b1 - g12 * b2) / g
-    a2 = (g11 * b2 - g12 * b1) / g
-    L11 = np.einsum("ij,ij->i", n, x11)
-    L12 = np.einsum("ij,ij->i", n, x12)
-    L22 = np.einsum("ij,ij->i", n, x22)
-    II = L11 * a1 * a1 + 2 * L12 * a1 * a2 + L22 * a2 * a2
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):  # g = 0: a pole or pinch point (NaN)
+        a1 = (g22 * b1 - g12 * b2) / g
+        a2 = (g11 * b2 - g12 * b1) / g
+        L11 = np.einsum("ij,ij->i", n, x11)
+        L12 = np.einsum("ij,ij->i", n, x12)
+        L22 = np.einsum("ij,ij->i", n, x22)
+        II = L11 * a1 * a1 + 2 * L12 * a1 * a2 + L22 * a2 * a2
         s = 2 * vn / II
     return uv0 + s[:, None] * np.stack([a1, a2], axis=1), s
 
