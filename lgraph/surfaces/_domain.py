@@ -285,7 +285,14 @@ class Domain:
         >>> d.wrap([[1.5, 2.5], [-1.0, -0.5]]).tolist()
         [[1.0, 0.5], [0.0, 1.5]]
         """
-        uv = self.cells(uv)[0]
+        if self.periodic[0] == "twisted" or self.periodic[1] == "twisted":
+            uv = self.cells(uv)[0]
+        else:  # plain periodic (the common case, in inner loops): no copies needed
+            uv = np.array(uv, dtype=float, copy=True)
+            for i in (0, 1):
+                if self.periodic[i] is True:
+                    lo, hi = self.range(i)
+                    uv[..., i] = lo + np.mod(uv[..., i] - lo, hi - lo)
         if clip:
             for i in (0, 1):
                 if not self.glued[i]:
