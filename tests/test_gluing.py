@@ -240,7 +240,9 @@ def test_geodesic_crosses_the_seam():
 
 
 @pytest.mark.parametrize(
-    "surface", [lg.MoebiusStrip(), lg.KleinBottle(form="figure8")], ids=["moebius", "klein8"]
+    "surface",
+    [lg.MoebiusStrip(), lg.KleinBottle(form="figure8"), lg.RomanSurface()],
+    ids=["moebius", "klein8", "roman"],
 )
 def test_level_lines_cross_the_seam(surface):
     w = np.array([1.0, 0.3, 0.2])
