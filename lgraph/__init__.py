@@ -88,6 +88,11 @@ _EXPORTS: dict[str, str] = {
     "Helicoid": ".surfaces.classical",
     "MonkeySaddle": ".surfaces.classical",
     "ParametricSurface": ".surfaces.parametric",
+    "MoebiusStrip": ".surfaces.onesided",
+    "KleinBottle": ".surfaces.onesided",
+    "BoySurface": ".surfaces.onesided",
+    "RomanSurface": ".surfaces.onesided",
+    "CrossCap": ".surfaces.onesided",
     "Torus": ".surfaces.quartic",
     "Profile": ".surfaces.profiles",
     "named_profile": ".surfaces.profiles",
@@ -178,6 +183,7 @@ __all__ += ["SurfaceOfRevolution", "Pseudosphere"]
 __all__ += ["Profile", "named_profile", "profile_from_points"]
 __all__ += ["LevelLines", "ParabolicLines", "SelfIntersection"]
 __all__ += ["orbit", "animate", "interact"]
+__all__ += ["MoebiusStrip", "KleinBottle", "BoySurface", "RomanSurface", "CrossCap"]
 
 # algebraic and implicit surfaces (issue #29)
 _EXPORTS |= {

@@ -283,8 +283,10 @@ class CurveBatch:
         """A batch of curves each with its own parameter-plane function
         ``uv_of(k, t) -> (n, 2)`` (one call per curve present);
         ``adjust(uv)`` (optional) corrects all parameters at once before the
-        periodic ones are wrapped and the others clipped to the domain."""
+        periodic ones are wrapped and the others clipped to the domain
+        (across a twisted seam ``adjust`` sees the parameters wrapped)."""
         domain = surface.domain
+        twisted = any(getattr(domain, "twisted", (False, False)))
 
         def uv(idx: np.ndarray, t: np.ndarray) -> np.ndarray:
             idx = np.asarray(idx)
@@ -292,6 +294,8 @@ class CurveBatch:
             for k in np.unique(idx).tolist():
                 sel = idx == k
                 out[sel] = uv_of(k, t[sel])
-            return domain.wrap(out if adjust is None else adjust(out))
+            if adjust is None:
+                return domain.wrap(out)
+            return domain.wrap(adjust(domain.wrap(out, clip=False) if twisted else out))
 
         return cls.from_uv(surface, family, t0, t1, uv, closed=closed, **kw)

@@ -303,16 +303,16 @@ def test_a_numeric_surface_counts_zero_sheets_for_rays_that_miss_it():
 @pytest.mark.parametrize(
     "kw, words",
     [
-        ({"periodic": ("twisted", False)}, "ParametricSurface: periodic[0] must be True or False"),
-        ({"periodic": ("no", False)}, "periodic[0] must be True or False, got 'no'"),
-        ({"periodic": "yes"}, "periodic must be a bool or a pair (u1, u2) of bools"),
+        ({"periodic": ("twist", False)}, "ParametricSurface: periodic[0] must be False, True or"),
+        ({"periodic": ("no", False)}, "periodic[0] must be False, True or 'twisted', got 'no'"),
+        ({"periodic": "yes"}, "periodic must be False, True, 'twisted' or a pair (u1, u2) of them"),
         ({"poles": ("no", True)}, "poles[0] must be a bool or a pair (low, high) of bools"),
         ({"poles": ((True, 2), False)}, "poles[0][1] must be True or False, got 2"),
     ],
 )
 def test_periodic_and_poles_take_only_bools(kw, words):
     """``periodic=("no", False)`` was (True, False): any truthy value counted
-    (issue #25)."""
+    (issue #25); ``"twisted"`` is the one string allowed (a glued edge)."""
     with pytest.raises(ValueError) as info:
         lg.ParametricSurface(moebius, (0, 1), (0, 1), **kw)
     assert words in str(info.value)

@@ -127,7 +127,7 @@ def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.
 
 
 def _chord_gap(y0: np.ndarray, y1: np.ndarray, target: np.ndarray, span: np.ndarray,
-               per: np.ndarray) -> np.ndarray:  # fmt: skip
+               per: Any) -> np.ndarray:  # fmt: skip
     """Distance (scaled parameters, max norm) of ``target`` to the chords ``y0 -> y1``."""
     r0 = _rel(y0, target, span, per)
     dr = (y1 - y0) / span
@@ -136,22 +136,21 @@ def _chord_gap(y0: np.ndarray, y1: np.ndarray, target: np.ndarray, span: np.ndar
     return np.abs(r0 + np.nan_to_num(tc)[:, None] * dr).max(axis=1)
 
 
-def _rel(p: np.ndarray, seed: np.ndarray, span: np.ndarray, per: np.ndarray) -> np.ndarray:
-    """Parameters relative to ``seed`` in spans (periodic ones to the nearest copy)."""
-    q = (p - seed) / span
-    return np.where(per, q - np.round(q), q)
+def _rel(p: np.ndarray, seed: np.ndarray, span: np.ndarray, per: Any) -> np.ndarray:
+    """Parameters relative to ``seed`` in spans (glued ones to the nearest copy
+    in the cover; ``per`` is the domain)."""
+    return (p - per.nearest_image(p, seed)) / span
 
 
 def _closest(C: np.ndarray, h: np.ndarray, seed: np.ndarray, span: np.ndarray,
-             per: np.ndarray) -> tuple[np.ndarray, ...]:  # fmt: skip
+             per: Any) -> tuple[np.ndarray, ...]:  # fmt: skip
     """The fraction (0..1) where each cubic passes closest to its
     seed (scaled parameters): the best of 33 samples, then Newton on
     ``(p - seed) . p' = 0``; with the point and tangent there."""
     grid = np.linspace(0.0, 1.0, 33)
     t = grid[None, :, None]
     p = ((C[:, None, 3] * t + C[:, None, 2]) * t + C[:, None, 1]) * t + C[:, None, 0]
-    q = (p - seed[:, None]) / span
-    q = np.where(per, q - np.round(q), q)
+    q = _rel(p, seed[:, None], span, per)
     th = grid[np.argmin((q * q).sum(axis=2), axis=1)]
     for _ in range(6):
         p, dp = _at(C, th, h)
@@ -279,12 +278,23 @@ def trace(
     span = np.array([d.span(0), d.span(1)])
     lo = np.array([d.u1[0], d.u2[0]])
     hi = np.array([d.u1[1], d.u2[1]])
-    per = np.array(d.periodic)
+    per = np.array(d.glued)
+    twisted = any(d.twisted)
+
+    def at(uv: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The field at cover points: directions and metric mapped from the
+        rectangle (a twist reflects a coordinate)."""
+        if not twisted:
+            return field(surface, d.wrap(uv, clip=False))
+        base, _, sign = d.cells(uv)
+        D, strength, G = field(surface, base)
+        G = G * np.stack([np.ones(len(G)), sign[:, 0] * sign[:, 1], np.ones(len(G))], axis=1)
+        return D * sign[:, None, :], strength, G
 
     def oriented(uv: np.ndarray, ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The field's direction at ``uv`` nearest to ``ref`` (same sign), and
         whether it is valid (finite, strong, at most 60 degrees from ``ref``)."""
-        D, strength, G = field(surface, d.wrap(uv, clip=False))
+        D, strength, G = at(uv)
         Gr = np.stack([G[:, 0] * ref[:, 0] + G[:, 1] * ref[:, 1],
                        G[:, 1] * ref[:, 0] + G[:, 2] * ref[:, 1]], axis=1)  # fmt: skip
         c = np.einsum("ibj,ij->ib", D, Gr)  # cosines with ref, per branch
@@ -300,7 +310,7 @@ def trace(
     Y = np.concatenate([seeds, seeds])
     ref = np.asarray(directions, float).reshape(-1, 2)
     ref = np.concatenate([ref, -ref])
-    _, _, G0 = field(surface, d.wrap(seeds, clip=False))
+    _, _, G0 = at(seeds)
     G0 = np.concatenate([G0, G0])
     nref = np.sqrt(G0[:, 0] * ref[:, 0] ** 2 + 2 * G0[:, 1] * ref[:, 0] * ref[:, 1]
                    + G0[:, 2] * ref[:, 1] ** 2)  # fmt: skip
@@ -367,16 +377,16 @@ def trace(
         # closing: a forward line passing its seed again after leaving it
         f = np.flatnonzero((act[g] < m) & np.isnan(redo) & ~stop_here)
         if len(f):
-            gap = _chord_gap(y[g[f]], y1[f], seeds[act[g[f]]], span, per)
+            gap = _chord_gap(y[g[f]], y1[f], seeds[act[g[f]]], span, d)
             near = f[(gap <= 0.05) & left[act[g[f]]]]
             left[act[g[f[gap > 0.05]]]] = True
             if len(near):
                 seed = seeds[act[g[near]]]
-                th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], seed, span, per)
-                hit = np.abs(_rel(p, seed, span, per)).max(axis=1) < FIELD_CLOSE_RTOL
+                th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], seed, span, d)
+                hit = np.abs(_rel(p, seed, span, d)).max(axis=1) < FIELD_CLOSE_RTOL
                 last = hit & ((th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin))
                 # the loop ends exactly on its seed (shifted by whole periods)
-                shift = _rel(p[last], seed[last], span, per) * span
+                shift = _rel(p[last], seed[last], span, d) * span
                 _finish(ends, near[last], th[last], p[last] - shift)
                 closed[act[g[near[last]]]] = True
                 alive[act[g[near[last]]] + m] = False  # the backward half is not needed
@@ -384,11 +394,11 @@ def trace(
         # reaching a singular point (an umbilic): the line ends where it passes it
         for point in singular:
             f = np.flatnonzero(np.isnan(redo) & ~stop_here)
-            gap = _chord_gap(y[g[f]], y1[f], np.broadcast_to(point, (len(f), 2)), span, per)
+            gap = _chord_gap(y[g[f]], y1[f], np.broadcast_to(point, (len(f), 2)), span, d)
             near = f[gap <= FIELD_SINGULAR_RTOL]
             if len(near):
                 target = np.broadcast_to(point, (len(near), 2))
-                th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], target, span, per)
+                th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], target, span, d)
                 last = (th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin)
                 _finish(ends, near[last], th[last], y1[near[last]])
                 redo[near[~last]] = th[~last] * hg[near[~last]]

@@ -32,11 +32,19 @@ __all__ = ["Geodesic", "geodesic"]
 # geodesics
 # ---------------------------------------------------------------------------
 def _geodesic_rhs(surface: Any) -> Any:
+    d = surface.domain
+    twisted = any(d.twisted)
+
     def rhs(_t: float, y: np.ndarray) -> np.ndarray:
         u1, u2, a, b = y
         u1a, u2a = np.array([u1]), np.array([u2])
+        sign = np.ones(2)
+        if twisted:  # the cover point's derivatives, from the rectangle's point
+            base, _, sg = d.cells(np.array([[u1, u2]]))
+            u1a, u2a, sign = base[:, 0], base[:, 1], sg[0]
         x1, x2 = surface.derivatives(u1a, u2a)
         x11, x12, x22 = surface.second_derivatives(u1a, u2a)
+        x1, x2, x12 = x1 * sign[0], x2 * sign[1], x12 * (sign[0] * sign[1])
         acc = (x11 * a * a + 2 * x12 * a * b + x22 * b * b)[0]
         x1, x2 = x1[0], x2[0]
         g11, g12, g22 = x1 @ x1, x1 @ x2, x2 @ x2

@@ -103,9 +103,12 @@ def _march(a: Any, b: Any, z0: np.ndarray, h: float, nmax: int) -> tuple[np.ndar
 
 def _unwrap4(a: Any, b: Any, z: np.ndarray) -> np.ndarray:
     z = z.copy()
+    for j, s in enumerate((a, b)):  # across a twisted seam: the cover's deck maps
+        if any(s.domain.twisted):
+            z[:, 2 * j : 2 * j + 2] = s.domain.continuous(z[:, 2 * j : 2 * j + 2])
     for k, (s, i) in enumerate(((a, 0), (a, 1), (b, 0), (b, 1))):
         d = s.domain
-        if d.periodic[i]:
+        if d.periodic[i] is True and not any(d.twisted):
             span = d.span(i)
             dz = np.diff(z[:, k])
             z[1:, k] += np.cumsum(-span * np.round(dz / span))

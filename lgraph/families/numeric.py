@@ -32,7 +32,7 @@ from ..curvature import _frame, asymptotic_field, principal_field
 from ..curves import CurveBatch
 from . import SPACINGS, parameter_line_batches
 from ._seeds import _center_seed, _crossing, _grid, _spread, _stable, cell_centres
-from .fieldlines import FieldLines, _rel, trace
+from .fieldlines import FieldLines, trace
 
 __all__ = ["field_line_batches", "numeric_lines_of_curvature", "umbilics"]
 
@@ -87,7 +87,7 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
         return np.empty((0, 2))
     r = np.linalg.norm(_umbilic_residual(surface, G, kappa), axis=1)
     r = np.where(np.isfinite(r), r, np.inf).reshape(n, n)
-    mode = ["wrap" if p else "nearest" for p in d.periodic]
+    mode = ["wrap" if p is True else "nearest" for p in d.periodic]
     low = np.flatnonzero(((r == minimum_filter(r, size=3, mode=mode)) & (r < 0.5)).ravel())
     u = G[low[np.argsort(r.ravel()[low])][:64]]
     h = 1e-6 * span
@@ -109,8 +109,7 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
     u = u[(f < 1e-9) & inside]
     keep: list[np.ndarray] = []
     for p in u[np.lexsort((u[:, 1], u[:, 0]))]:
-        if all(np.abs(_rel(p[None], q[None], span, np.array(d.periodic))).max() > 1e-6
-               for q in keep):  # fmt: skip
+        if all(np.abs((p - d.nearest_image(p, q)) / span).max() > 1e-6 for q in keep):
             keep.append(p)
     return np.array(keep).reshape(-1, 2)
 

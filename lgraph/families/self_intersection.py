@@ -62,6 +62,14 @@ NEAR_CELLS = 2
 GRID_SHIFT = 0.3819660112501051
 #: Gauss-Newton steps projecting evaluated points onto the curve
 PROJECT_STEPS = 4
+#: crossings in one cell whose partners are more than this fraction of the grid
+#: apart lie on different pairs of sheets (a triple point): they are not joined
+#: (partners of one branch move up to about 1/6 of the grid a cell, on a tube
+#: crossing itself; the Roman surface's triple point 1/2)
+PARTNER_FRACTION = 0.25
+#: branches reaching less far than this (relative to the surface size: invisible) are
+#: dropped: pieces at a triple or pinch point where a preimage is a pole
+MIN_EXTENT = 1e-4
 #: accepted crossing: |x(a) - x(b)| below this, relative to the surface size
 ACCEPT_RTOL = 1e-11
 
@@ -93,12 +101,28 @@ def _leaf_pairs(surface: Surface) -> tuple[np.ndarray, np.ndarray, int]:
     i1, j1, i2, j2 = pairs[:, 0] // n, pairs[:, 0] % n, pairs[:, 1] // n, pairs[:, 1] % n
     di_ = np.abs(i1 - i2)
     dj_ = np.abs(j1 - j2)
-    if d.periodic[0]:
+    if d.periodic[0] is True:
         di_ = np.minimum(di_, n - di_)
-    if d.periodic[1]:
+    if d.periodic[1] is True:
         dj_ = np.minimum(dj_, n - dj_)
     far = (di_ > NEAR_CELLS) | (dj_ > NEAR_CELLS)
+    if any(d.twisted):  # neighbours across a twisted seam, in cells
+        far &= _cell_gap(d, np.stack([i1, j1], 1), np.stack([i2, j2], 1), n) > NEAR_CELLS
     return pairs[far, 0], pairs[far, 1], n
+
+
+def _cell_gap(d: Any, c1: np.ndarray, c2: np.ndarray, n: int) -> np.ndarray:
+    """Distance in cells (max norm) of cells ``c1`` and ``c2`` of an ``n x n``
+    grid, across glued seams."""
+    lo = np.array([d.u1[0], d.u2[0]])
+    h = np.array([d.span(0), d.span(1)]) / n
+    p, q = (c1 + 0.5) * h + lo, (c2 + 0.5) * h + lo
+    return np.abs((d.nearest_image(p, q) - p) / h).max(axis=1)
+
+
+def _plain(d: Any) -> tuple[bool, bool]:
+    """Which parameters wrap plainly (a twisted one is traced as an interval)."""
+    return (d.periodic[0] is True, d.periodic[1] is True)
 
 
 def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001, ANN202
@@ -148,6 +172,7 @@ def self_intersection_points(surface: Surface) -> dict:
     parameters ``b`` with ``x(a) = x(b)``, and the two cells each crossing's
     edge borders, as flat ids)."""
     d = surface.domain
+    per = _plain(d)
     p, q, n = _leaf_pairs(surface)
     lo = np.array([d.u1[0], d.u2[0]])
     h = np.array([d.span(0), d.span(1)]) / n
@@ -162,9 +187,9 @@ def self_intersection_points(surface: Surface) -> dict:
         cells = [(i, j, bc)]
         for ax, (ii, jj) in ((0, (i - 1, j)), (1, (i, j - 1))):
             sel = (i if ax == 0 else j) == 0
-            if not d.periodic[ax] and sel.any():
+            if not per[ax] and sel.any():
                 cells.append((ii[sel], jj[sel], bc[sel]))
-        sel = (i == 0) & (j == 0) & (not d.periodic[0]) & (not d.periodic[1])
+        sel = (i == 0) & (j == 0) & (not per[0]) & (not per[1])
         if sel.any():
             cells.append((i[sel] - 1, j[sel] - 1, bc[sel]))
         for ci, cj, cb in cells:
@@ -180,26 +205,28 @@ def self_intersection_points(surface: Surface) -> dict:
                 a0 = corner + np.array(off0) * h
                 a1 = corner + np.array(off1) * h
                 for ax in (0, 1):  # cells overhanging the patch end at its edge
-                    if not d.periodic[ax]:
+                    if not per[ax]:
                         a0[:, ax] = np.clip(a0[:, ax], *d.range(ax))
                         a1[:, ax] = np.clip(a1[:, ax], *d.range(ax))
                 s, b, ok = _solve_edges(surface, a0, a1, cb, h, size)
                 ok &= (s >= 0) & (s <= 1)
                 pa = a0 + s[:, None] * (a1 - a0)
                 for ax in (0, 1):  # on the drawn patch (a shifted cell may overhang it)
-                    if not d.periodic[ax]:
+                    if not per[ax]:
                         ok &= (pa[:, ax] >= d.range(ax)[0]) & (pa[:, ax] <= d.range(ax)[1])
                 # the partner must be another point of the patch, not the trivial b = a
                 gap = np.abs(b - pa)
                 for ax in (0, 1):
-                    if d.periodic[ax]:
+                    if per[ax]:
                         gap[:, ax] = np.abs(
                             np.mod(gap[:, ax] + 0.5 * n * h[ax], n * h[ax]) - 0.5 * n * h[ax]
                         )
                 ok &= np.any(gap > NEAR_CELLS * h, axis=1)
+                if any(d.twisted):  # nor the same point across a twisted seam
+                    ok &= np.abs((d.nearest_image(pa, b) - pa) / h).max(axis=1) > NEAR_CELLS
                 bw = d.wrap(b, clip=False)
                 for ax in (0, 1):
-                    if not d.periodic[ax]:
+                    if not d.glued[ax]:
                         lo_, hi_ = d.range(ax)
                         ok &= (bw[:, ax] >= lo_ - 1e-9 * h[ax]) & (bw[:, ax] <= hi_ + 1e-9 * h[ax])
                 b = bw
@@ -224,9 +251,9 @@ def self_intersection_points(surface: Surface) -> dict:
 def _cell_id(cell: np.ndarray, n: int, d: Any) -> np.ndarray:
     """Flat ids of traced cells ``(i, j)``, ``-1 <= i, j <= n`` (wrapped where periodic)."""
     i, j = cell[:, 0].copy(), cell[:, 1].copy()
-    if d.periodic[0]:
+    if d.periodic[0] is True:
         i %= n
-    if d.periodic[1]:
+    if d.periodic[1] is True:
         j %= n
     return (i + 1) * (n + 2) + (j + 1)
 
@@ -248,18 +275,31 @@ def _trace(points: dict, surface: Surface) -> list[tuple[np.ndarray, bool]]:
     rows, cols = [], []
     starts = np.flatnonzero(np.r_[True, cells[1:] != cells[:-1]])
     ends = np.r_[starts[1:], len(cells)]
+    d = surface.domain
+    h = np.array([d.span(0), d.span(1)]) / points["n"]
+    b_all = points["b"]
+
+    def partners_apart(i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        """Crossings whose partners lie on different sheets (as at a triple
+        point): more than ``PARTNER_FRACTION`` of the grid apart, across seams."""
+        bi, bj = b_all[i], b_all[j]
+        gap = np.abs((d.nearest_image(bi, bj) - bi) / h).max(axis=-1)
+        return gap > PARTNER_FRACTION * points["n"]
+
     for s0, s1 in zip(starts.tolist(), ends.tolist()):  # one step per crossed cell
         k = pts[s0:s1]
         if len(k) == 2:
-            rows.append(k[0])
-            cols.append(k[1])
+            if not partners_apart(k[:1], k[1:])[0]:
+                rows.append(k[0])
+                cols.append(k[1])
         elif len(k) > 2:
             dist = np.linalg.norm(a[k][:, None] - a[k][None], axis=2)
+            dist[partners_apart(k[:, None], k[None, :])] = np.inf
             np.fill_diagonal(dist, np.inf)
             used: set[int] = set()
             for flat in np.argsort(dist, axis=None).tolist():
                 x, y = divmod(flat, len(k))
-                if x in used or y in used or x >= y:
+                if x in used or y in used or x >= y or not np.isfinite(dist[x, y]):
                     continue
                 used |= {x, y}
                 rows.append(k[x])
@@ -325,7 +365,9 @@ def _project(surface: Surface, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray
         J = np.stack([xa1, xa2, -xb1, -xb2], axis=2)  # (n, 3, 4)
         JJ = J @ np.swapaxes(J, 1, 2)
         with np.errstate(all="ignore"):
-            y = np.linalg.solve(JJ + 1e-300 * np.eye(3), -g[:, :, None])
+            # pinv: JJ is singular where the sheets are tangent (a pinch or triple point)
+            JJ = np.where(np.isfinite(JJ), JJ, 0.0)
+            y = np.linalg.pinv(JJ) @ np.where(np.isfinite(g), -g, 0.0)[:, :, None]
         step = (np.swapaxes(J, 1, 2) @ y)[:, :, 0]
         step = np.where(np.isfinite(step), step, 0.0)
         a = a + step[:, :2]
@@ -339,16 +381,16 @@ class _Branch:
     def __init__(self, surface: Surface, a: np.ndarray, b: np.ndarray, closed: bool) -> None:
         from scipy.interpolate import CubicSpline, make_interp_spline
 
-        from ..surfaces._numeric_contour import _unwrap
-
         d = surface.domain
         scale = np.array([d.span(0), d.span(1)])
-        a, b = _unwrap(surface, a), _unwrap(surface, b)
         if closed:
-            a = np.vstack([a, a[:1]])
-            b = np.vstack([b, b[:1]])
-            a[-1] = _unwrap(surface, a[-2:])[-1]
-            b[-1] = _unwrap(surface, b[-2:])[-1]
+            a, b = np.vstack([a, a[:1]]), np.vstack([b, b[:1]])
+        # both preimages continuous in the cover (either may cross a seam)
+        a, b = d.continuous(a), d.continuous(b)
+        if closed and any(d.twisted):
+            # closing through a twist: not a loop of the cover, drawn open
+            # (its two ends are one point of the surface)
+            closed = bool((d.deck(a[-1], a[0])[0] > 0).all() and (d.deck(b[-1], b[0])[0] > 0).all())
         t = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(a / scale, axis=0), axis=1))])
         keep = np.concatenate([[True], np.diff(t) > 1e-9 * max(t[-1], 1e-300)])
         a, b, t = a[keep], b[keep], t[keep]
@@ -368,6 +410,15 @@ class _Branch:
     def __call__(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         ramp = (t / self.length)[:, None]
         return self.sa(t) + ramp * self.da, self.sb(t) + ramp * self.db
+
+
+def _extent(surface: Surface, br: _Branch) -> float:
+    """How far a branch reaches in space, relative to the surface's size (16
+    points; about 0 for one that stays at a triple point, whose preimage is a
+    pole's row of parameters)."""
+    x = surface.points(surface.domain.wrap(br(np.linspace(0, br.length, 16))[0], clip=False))
+    with np.errstate(invalid="ignore"):
+        return float(np.nan_to_num(np.nanmax(np.ptp(x, axis=0)))) / surface.size
 
 
 @attrs.frozen
@@ -392,6 +443,7 @@ class SelfIntersection(Family):
             _Branch(surface, a_all[i], b_all[i], closed)
             for i, closed in _one_preimage(lines, pts, h)
         ]
+        branches = [br for br in branches if br.length > 0 and _extent(surface, br) > MIN_EXTENT]
         if not branches:
             return []
 

@@ -59,7 +59,7 @@ The format::
     y = "(7.5 + v*cos(u/2)) * sin(u)"
     z = "v*sin(u/2)"
     u = [0, "2*pi"]              # the parameter ranges
-    v = [-0.6, 0.6]              # also periodic = [true, false], poles = ...
+    v = [-0.6, 0.6]              # also periodic = [true, false] ("twisted" too), poles = ...
     families = [{ name = "parameter_lines", n1 = 24, n2 = 4 }]
 
     [[curve]]                    # a free curve: x, y, z of t; t; closed, style, transform

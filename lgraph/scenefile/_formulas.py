@@ -86,13 +86,15 @@ def _texts(
 
 
 def _flags(key: Key, value: Any, what: str) -> Any:
-    """``periodic`` / ``poles``: a bool, or an array of bools (pairs nested)."""
-    if isinstance(value, bool):
+    """``periodic`` / ``poles``: a bool, or an array of bools (pairs nested);
+    ``periodic`` also takes ``"twisted"`` (glued with a twist)."""
+    if isinstance(value, bool) or (what == "periodic" and value == "twisted"):
         return value
     if isinstance(value, list) and len(value) == 2:
         return tuple(_flags(key + (k,), x, what) for k, x in enumerate(value))
+    allowed = 'true, false, "twisted"' if what == "periodic" else "true/false"
     raise _Invalid(
-        key, f"expected true/false or a pair [u, v] of them for {what}, got {_show(value)}"
+        key, f"expected {allowed} or a pair [u, v] of them for {what}, got {_show(value)}"
     )
 
 

@@ -12,12 +12,11 @@ from __future__ import annotations
 import functools
 from typing import TYPE_CHECKING, Any
 
-import attrs
 import numpy as np
 
 from .._own import CONTOUR, OFF, ON
 from .._tolerance import FD_STEP_1, FD_STEP_2
-from .._validate import interval
+from ._domain import Domain, domain_flags  # noqa: F401 - domain_flags: re-exported
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
@@ -31,133 +30,6 @@ __all__ = ["Domain", "Surface", "OFF", "ON", "CONTOUR"]
 _OFF = (-2.0, -1.0, 1.0, 2.0)
 _W1 = (1 / 12, -2 / 3, 2 / 3, -1 / 12)
 _W2 = (-1 / 12, 4 / 3, 4 / 3, -1 / 12)
-
-
-def _flag(value: Any, what: str) -> bool:
-    """A strict bool (``True``/``False``, numpy's or 0/1): ``"no"`` or
-    ``"twisted"`` is not silently true."""
-    if isinstance(value, (bool, np.bool_)) or (
-        isinstance(value, (int, np.integer)) and value in (0, 1)
-    ):
-        return bool(value)
-    raise ValueError(f"{what} must be True or False, got {value!r}")
-
-
-def _bool_pair(value: Any, what: str = "periodic", pair: str = "(u1, u2)") -> tuple[bool, bool]:
-    """One flag for both parameters (or ends) or a pair of flags."""
-    if isinstance(value, (bool, np.bool_)):
-        return (bool(value), bool(value))
-    try:
-        if isinstance(value, str):  # "no" is not a pair ("n", "o")
-            raise TypeError
-        a, b = value
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"{what} must be a bool or a pair {pair} of bools, got {value!r}"
-        ) from None
-    return (_flag(a, f"{what}[0]"), _flag(b, f"{what}[1]"))
-
-
-def _pole_pairs(value: Any, what: str = "poles") -> tuple[tuple[bool, bool], tuple[bool, bool]]:
-    """Poles per parameter end: ``True`` (all four ends), ``(p1, p2)`` (both
-    ends of ``u1`` / ``u2``) or ``((lo1, hi1), (lo2, hi2))``, mixed freely."""
-    if isinstance(value, (bool, np.bool_)):
-        value = (value, value)
-    try:
-        a, b = value
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"{what} must be a bool, a pair (u1, u2) of bools, or a pair of pairs "
-            f"((u1 low, u1 high), (u2 low, u2 high)), got {value!r}"
-        ) from None
-    ends = "(low, high)"
-    return (_bool_pair(a, f"{what}[0]", ends), _bool_pair(b, f"{what}[1]", ends))
-
-
-def domain_flags(owner: str) -> tuple[Any, Any]:
-    """attrs fields ``periodic`` and ``poles`` whose errors name ``owner``."""
-    periodic = attrs.field(
-        default=(False, False), converter=lambda v: _bool_pair(v, f"{owner}: periodic")
-    )
-    poles = attrs.field(default=False, converter=lambda v: _pole_pairs(v, f"{owner}: poles"))
-    return periodic, poles
-
-
-_DOMAIN_FLAGS = domain_flags("Domain")
-
-
-@attrs.frozen
-class Domain:
-    """The drawn parameter rectangle ``u1_range x u2_range``.
-
-    ``periodic[i]`` says that ``u_i`` wraps around (its two ends are the same
-    curve); ``poles[i] = (low, high)`` says which ends of ``u_i`` collapse to
-    single points (no boundary line is drawn there).  ``poles`` may be given
-    as one bool, one bool per parameter, or a pair per parameter: a bowl
-    with its vertex at ``u1 = 0`` and its rim at ``u1 = 1`` has
-    ``poles=((True, False), False)``.
-
-    >>> Domain((0, 1), (0, 1), poles=((True, False), False)).ends(0).tolist()
-    [1.0]
-    >>> d = Domain((0, 1), (0, 6.283185307179586), periodic=(False, True))
-    >>> d.lines(0, 3).tolist()
-    [0.25, 0.5, 0.75]
-    >>> len(d.lines(1, 4))
-    4
-    >>> d.ends(0).tolist(), d.ends(1).tolist()
-    ([0.0, 1.0], [])
-    """
-
-    u1: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u1", v))
-    u2: tuple[float, float] = attrs.field(converter=lambda v: interval("Domain", "u2", v))
-    periodic: tuple[bool, bool] = _DOMAIN_FLAGS[0]
-    poles: tuple[tuple[bool, bool], tuple[bool, bool]] = _DOMAIN_FLAGS[1]
-
-    def range(self, i: int) -> tuple[float, float]:
-        return self.u1 if i == 0 else self.u2
-
-    def span(self, i: int) -> float:
-        lo, hi = self.range(i)
-        return hi - lo
-
-    def lines(self, i: int, n: int) -> np.ndarray:
-        """``n`` evenly spread values of ``u_i`` for drawing ``u_i = const`` lines.
-
-        Periodic parameters get ``n`` values without repeating the seam;
-        otherwise the ``n`` values split the range into ``n + 1`` equal parts
-        (the ends are the patch boundary, drawn by :meth:`Surface.boundary`, or
-        poles).
-        """
-        lo, hi = self.range(i)
-        if n <= 0:
-            return np.empty(0)
-        if self.periodic[i]:
-            return lo + (hi - lo) * np.arange(n) / n
-        return lo + (hi - lo) * np.arange(1, n + 1) / (n + 1)
-
-    def wrap(self, uv: Any, clip: bool = True) -> np.ndarray:
-        """A copy of parameters ``(..., 2)`` with periodic ones wrapped into their
-        range and (with ``clip``) the others clipped to it.
-
-        >>> d = Domain((0, 1), (0, 2), periodic=(False, True))
-        >>> d.wrap([[1.5, 2.5], [-1.0, -0.5]]).tolist()
-        [[1.0, 0.5], [0.0, 1.5]]
-        """
-        uv = np.array(uv, dtype=float, copy=True)
-        for i in (0, 1):
-            lo, hi = self.range(i)
-            if self.periodic[i]:
-                uv[..., i] = lo + np.mod(uv[..., i] - lo, hi - lo)
-            elif clip:
-                uv[..., i] = np.clip(uv[..., i], lo, hi)
-        return uv
-
-    def ends(self, i: int) -> np.ndarray:
-        """The values of ``u_i`` at which the patch has a boundary curve (both
-        ends, unless ``u_i`` is periodic; pole ends excluded)."""
-        if self.periodic[i]:
-            return np.empty(0)
-        return np.array([e for e, pole in zip(self.range(i), self.poles[i]) if not pole], float)
 
 
 class Surface:

@@ -22,6 +22,7 @@ from scipy.interpolate import CubicSpline, make_interp_spline
 from .._own import CONTOUR, ON
 from ..geometry.vectors import cross as _cross
 from ._memo import per_surface
+from ._seams import unjump
 from ._zero_set import CONTOUR_GRID, grid_parameters, zero_set
 
 if TYPE_CHECKING:
@@ -181,38 +182,34 @@ def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) ->
     return [_contour_batch(surface, projector, curves)] if curves else []
 
 
-def _unwrap(surface: Surface, p: np.ndarray) -> np.ndarray:
-    d = surface.domain
-    p = p.copy()
-    for i in (0, 1):
-        if d.periodic[i]:
-            span = d.span(i)
-            dp = np.diff(p[:, i])
-            jumps = -span * np.round(dp / span)
-            p[1:, i] += np.cumsum(jumps)
-    return p
-
-
 class _ContourCurve:
-    """One contour curve: spline in the parameter plane + Newton projection."""
+    """One contour curve: spline in the parameter plane + Newton projection.
+
+    Points are unwrapped into the cover (:mod:`._seams`); a closed curve
+    whose closing step crosses a twisted seam comes back mirrored, so its
+    spline runs over two laps (a translation apart) of which one is drawn."""
 
     def __init__(self, surface: Surface, pts: np.ndarray, closed: bool) -> None:
         d = surface.domain
         scale = np.array([d.span(0), d.span(1)])
-        p = _unwrap(surface, pts)
+        p = unjump(d, pts)
         if closed:
-            p = np.vstack([p, p[:1]])
-            if d.periodic[0] or d.periodic[1]:
-                # the closing step may cross a seam: unwrap it too
-                p[-1] = _unwrap(surface, p[-2:])[-1]
+            p = np.vstack([p, d.nearest_image(p[-1], p[0])])
         chord = np.linalg.norm(np.diff(p / scale, axis=0), axis=1)
         keep = np.concatenate([[True], chord > 1e-3 * np.median(chord)])
         if closed:
             keep[-1] = True
             keep[-2] = keep[-2] and chord[-1] > 1e-3 * np.median(chord)
         p = p[keep]
+        laps = 1
+        if closed and any(d.twisted):
+            S, t = d.deck(p[-1], p[0])
+            if (S < 0).any():  # mirrored: the second lap closes it in the cover
+                p = np.vstack([p, S * p[1:] + t])
+                laps = 2
         t = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p / scale, axis=0), axis=1))])
-        self.length = float(t[-1])
+        self.period = float(t[-1])
+        self.length = float(t[-1]) / laps
         self.closed = closed
         if closed and len(p) >= 4:
             self.drift = p[-1] - p[0]
@@ -222,7 +219,7 @@ class _ContourCurve:
             self.spline = make_interp_spline(t, p, k=min(3, len(p) - 1))
 
     def __call__(self, t: np.ndarray) -> np.ndarray:
-        return self.spline(t) + np.outer(t / self.length, self.drift)
+        return self.spline(t) + np.outer(t / self.period, self.drift)
 
 
 def _contour_batch(surface: Surface, projector: Projector, curves: list) -> CurveBatch:

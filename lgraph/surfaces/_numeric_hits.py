@@ -51,9 +51,9 @@ def _fast_derivatives(surface: Surface, u1: np.ndarray, u2: np.ndarray, x: np.nd
     h1, h2 = 1e-7 * d.span(0), 1e-7 * d.span(1)
     lo1, hi1 = d.u1
     lo2, hi2 = d.u2
-    # step inward at the upper end of non-periodic parameters
-    s1 = np.where(~d.periodic[0] & (u1 + h1 > hi1), -h1, h1)
-    s2 = np.where(~d.periodic[1] & (u2 + h2 > hi2), -h2, h2)
+    # step inward at the upper end of parameters that are not glued
+    s1 = np.where((not d.glued[0]) & (u1 + h1 > hi1), -h1, h1)
+    s2 = np.where((not d.glued[1]) & (u2 + h2 > hi2), -h2, h2)
     x1 = (surface.point(u1 + s1, u2) - x) / s1[:, None]
     x2 = (surface.point(u1, u2 + s2) - x) / s2[:, None]
     return x1, x2
@@ -131,7 +131,7 @@ def _in_cell(
         w = c1[:, i] - c0[:, i]
         lo, hi = c0[:, i] - margin * w, c1[:, i] + margin * w
         x = uv[:, i]
-        if d.periodic[i]:
+        if d.periodic[i] is True:
             span = d.span(i)
             x = lo + np.mod(x - lo, span)
         inside &= (x >= lo) & (x <= hi)
@@ -147,7 +147,8 @@ def _local_second_root(
     x1, x2 = surface.derivatives(uv0[:, 0], uv0[:, 1])
     x11, x12, x22 = surface.second_derivatives(uv0[:, 0], uv0[:, 1])
     n = _cross(x1, x2)
-    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
     vn = np.einsum("ij,ij->i", v, n)
     g11 = np.einsum("ij,ij->i", x1, x1)
     g12 = np.einsum("ij,ij->i", x1, x2)
@@ -155,13 +156,13 @@ def _local_second_root(
     b1 = np.einsum("ij,ij->i", x1, v)
     b2 = np.einsum("ij,ij->i", x2, v)
     g = g11 * g22 - g12 * g12
-    a1 = (g22 * b1 - g12 * b2) / g
-    a2 = (g11 * b2 - g12 * b1) / g
-    L11 = np.einsum("ij,ij->i", n, x11)
-    L12 = np.einsum("ij,ij->i", n, x12)
-    L22 = np.einsum("ij,ij->i", n, x22)
-    II = L11 * a1 * a1 + 2 * L12 * a1 * a2 + L22 * a2 * a2
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):  # g = 0: a pole or pinch point (NaN)
+        a1 = (g22 * b1 - g12 * b2) / g
+        a2 = (g11 * b2 - g12 * b1) / g
+        L11 = np.einsum("ij,ij->i", n, x11)
+        L12 = np.einsum("ij,ij->i", n, x12)
+        L22 = np.einsum("ij,ij->i", n, x22)
+        II = L11 * a1 * a1 + 2 * L12 * a1 * a2 + L22 * a2 * a2
         s = 2 * vn / II
     return uv0 + s[:, None] * np.stack([a1, a2], axis=1), s
 

@@ -8,7 +8,8 @@ lines, self-intersections").  :func:`zero_set` samples the function on a
 whose ends differ in sign, refines each crossing on its edge to the rounding
 level of the function (:func:`lgraph._roots.bracketed_roots`), and joins the
 crossings cell by cell into polylines (saddle cells decided by the centre
-value), also across periodic seams.
+value), also across periodic seams; pieces that meet across a twisted seam
+are joined by :mod:`._seams`.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components, depth_first_order
 
 from .._roots import bracketed_roots
+from ._seams import join_pieces
 
 if TYPE_CHECKING:
     from ._base import Surface
@@ -41,7 +43,7 @@ JUMP_RTOL = 1e-6
 def _grid_axis(surface: Surface, i: int, n: int) -> np.ndarray:
     d = surface.domain
     lo, hi = d.range(i)
-    if d.periodic[i]:
+    if d.periodic[i] is True:
         return lo + (hi - lo) * np.arange(n) / n
     inset = 1e-7 * (hi - lo)
     return np.linspace(lo + inset * d.poles[i][0], hi - inset * d.poles[i][1], n)
@@ -84,7 +86,7 @@ def zero_set(
     F = fun(*np.meshgrid(a1, a2, indexing="ij")) if values is None else values
     F = np.where(np.isfinite(F), F, 0.0)
     pos = F >= 0
-    per1, per2 = d.periodic
+    per1, per2 = d.periodic[0] is True, d.periodic[1] is True  # twisted: joined below
     e1 = n1 if per1 else n1 - 1  # number of edges along u1 per row
     e2 = n2 if per2 else n2 - 1
     # horizontal edges (i, j)-(i+1, j): ids i * n2 + j ; vertical (i, j)-(i, j+1): n1 n2 + i n2 + j
@@ -178,4 +180,4 @@ def zero_set(
         if not np.ptp(pts[order], axis=0).any():
             continue  # crossings on the edges around one grid node where fun vanishes: a point
         curves.append((pts[order], len(ends) == 0))
-    return curves
+    return join_pieces(d, curves) if any(d.twisted) else curves
