@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["all_real_roots", "has_root_in", "real_roots"]
+__all__ = ["all_real_roots", "has_root_in", "real_roots", "roots_in"]
 
 
 def real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
@@ -99,8 +99,19 @@ def all_real_roots(coef: np.ndarray, size: Any) -> np.ndarray:
 def has_root_in(coef: np.ndarray, lower: Any, upper: Any, size: Any) -> np.ndarray:
     """Whether each polynomial of :func:`real_roots` has a real root in
     ``(lower, upper)`` (scalars or one value per row)."""
+    return roots_in(coef, lower, upper, size) > 0
+
+
+def roots_in(coef: np.ndarray, lower: Any, upper: Any, size: Any) -> np.ndarray:
+    """How many real roots (:func:`real_roots`, with multiplicity as they
+    split) each polynomial has in ``(lower, upper)`` (scalars or one value
+    per row).
+
+    >>> roots_in(np.array([[1.0, -6.0, 11.0, -6.0]]), 0.5, 2.5, 1.0).tolist()
+    [2]
+    """
     n = len(coef)
     lower, upper = (np.broadcast_to(np.asarray(x, float), (n,))[:, None] for x in (lower, upper))
     s = real_roots(coef, size)
     with np.errstate(invalid="ignore"):
-        return ((s > lower) & (s < upper)).any(axis=1)
+        return ((s > lower) & (s < upper)).sum(axis=1)

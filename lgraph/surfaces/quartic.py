@@ -2,7 +2,7 @@
 
 Both satisfy ``(|x|^2 + k)^2 = 4 sum_i (w_i . x + w0_i)^2``; along a ray this is
 a quartic in the ray parameter, solved for all rays at once
-(:func:`~lgraph.surfaces._polyroots.has_root_in`).
+(:func:`~lgraph.surfaces._polyroots.roots_in`).
 
 >>> import numpy as np
 >>> t = Torus(3, 1)
@@ -25,7 +25,7 @@ import numpy as np
 from .._tolerance import SELF_HIT_RTOL
 from ..families import parameter_line_batches
 from ._base import CONTOUR, ON, Domain, Surface
-from ._polyroots import has_root_in
+from ._polyroots import roots_in
 from .parametric import _TWO_PI, _positive, _stack, _uv
 
 __all__ = ["Torus", "DupinCyclide"]
@@ -48,11 +48,13 @@ def _quartic_hits(
     k: float,
     lin: np.ndarray,
     size: float,
+    count: bool = False,
 ) -> np.ndarray:
-    """Exact ray test for the surfaces :func:`_quartic_implicit` describes.
+    """Exact ray test for the surfaces :func:`_quartic_implicit` describes
+    (with ``count``: how many times each ray crosses the surface).
 
     Along ``o + s v`` the implicit function is a quartic in ``s``, solved for
-    all rays at once (:func:`~lgraph.surfaces._polyroots.has_root_in`).  A
+    all rays at once (:func:`~lgraph.surfaces._polyroots.roots_in`).  A
     point on the surface (``ON``) has the root ``s = 0`` divided out (a cubic
     is left); a contour point (``CONTOUR``, the ray tangent there) has it
     twice (a quadratic).  Roots count when real and in
@@ -74,7 +76,7 @@ def _quartic_hits(
          2 * qb * qc - 8 * (la * lb).sum(1), qc * qc - 4 * (lb * lb).sum(1)], axis=1,
     )  # fmt: skip
     speed = np.sqrt(qa)  # s is in units of |v|
-    hit = np.zeros(n, dtype=bool)
+    hit = np.zeros(n, dtype=np.int64)
     for degree, rows in (
         (4, np.flatnonzero((own != ON) & (own != CONTOUR))),
         (3, np.flatnonzero(own == ON)),
@@ -82,10 +84,8 @@ def _quartic_hits(
     ):
         if len(rows):  # the last 4 - degree coefficients vanish: s = 0 divided out
             scale = size / speed[rows]
-            hit[rows] = has_root_in(
-                coef[rows, : degree + 1], SELF_HIT_RTOL * scale, smax[rows], scale
-            )
-    return hit
+            hit[rows] = roots_in(coef[rows, : degree + 1], SELF_HIT_RTOL * scale, smax[rows], scale)
+    return hit if count else hit > 0
 
 
 class _QuarticSurface(Surface):
@@ -129,10 +129,11 @@ class _QuarticSurface(Surface):
         smax: np.ndarray,
         own: np.ndarray | None = None,
     ) -> np.ndarray:
-        """The ray's crossings (up to four), counted by the numeric ray test."""
-        from ._numeric_hits import hits
-
-        return hits(self, origins, directions, smax, own, count=True)
+        """The ray's crossings (up to four; a point's own root not counted):
+        the real roots of the ray's quartic in ``(eps, smax)``
+        (:func:`_quartic_hits`)."""
+        k, lin = self._quartic
+        return _quartic_hits(origins, directions, smax, own, k, lin, self._quartic_size(), True)
 
 
 @attrs.frozen
