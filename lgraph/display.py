@@ -156,8 +156,9 @@ def plot(drawing: Drawing, ax: Any = None, *, axis: bool = False, legend: bool =
     ``$...$``), in their size and colour.  ``legend=True`` adds a legend
     with one entry per family (and one for hidden parts of each).
     ``axis=False`` hides the axes' frame and ticks, which mean nothing for
-    a projection.  Halos are not cut here (matplotlib lays text out itself).
-    Returns the Axes.
+    a projection.  Halos are not cut here (the scale of pt to data is known
+    only when matplotlib draws): a label with a halo gets a knock-out box in
+    the axes' background colour, its gap wide.  Returns the Axes.
     """
     from .backends._common import finite_runs
 
@@ -230,6 +231,14 @@ def _plot_labels(drawing: Drawing, ax: Any) -> None:
         where = offset_copy(ax.transData, fig=ax.figure, x=dx, y=dy, units="points")
         ha = {0.0: "left", 0.5: "center", 1.0: "right"}[fx]
         va = {0.0: "bottom", 0.5: "center", 1.0: "top"}[fy]  # "bottom": of the ink
+        halo = getattr(lab, "halo", None)
+        box = None
+        if halo is not None:  # a knock-out behind the text (pad: in font sizes)
+            box = {
+                "boxstyle": f"square,pad={max(float(halo), 0.0) / lab.size:g}",
+                "facecolor": ax.get_facecolor(),
+                "edgecolor": "none",
+            }
         ax.text(
             float(lab.xy[0]),
             float(lab.xy[1]),
@@ -242,4 +251,5 @@ def _plot_labels(drawing: Drawing, ax: Any) -> None:
             family="DejaVu Serif",
             math_fontfamily="cm",
             zorder=3.0 if lab.visible else 1.7,
+            bbox=box,
         )

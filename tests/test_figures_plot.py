@@ -69,3 +69,33 @@ def test_hidden_parts_are_dashed_below_and_the_legend_names_the_families(drawing
     entries = [t.get_text() for t in ax.get_legend().get_texts()]
     assert len(entries) == len(set(entries))  # one entry per family and visibility
     assert {"u1", "u2", "contour", "point"} <= set(entries)
+
+
+def test_a_label_with_a_halo_gets_a_knock_out_box_its_gap_wide():
+    """plot(ax) cannot cut the lines (the scale of pt to data is fixed when
+    matplotlib draws): a halo is a box in the axes' colour behind the text,
+    padded by the gap; the box hides the lines under the label's ink."""
+    sc = lg.Scene()
+    sc.add(lg.Sphere(1), lg.ParameterLines(12, 24))
+    sc.add(lg.Label("$\\kappa$", at=(0, 0, 0), halo=3.0, size=20, always=True))
+    sc.add(lg.Label("$N$", at=(0.5, 0, 0), always=True))
+    d = sc.render(lg.ParallelProjector(direction=(0, -1, 0)))
+    ax = d.plot()
+    try:
+        halo, plain = ax.texts
+        assert plain.get_bbox_patch() is None
+        patch = halo.get_bbox_patch()
+        assert patch is not None and patch.get_edgecolor()[3] == 0
+        assert matplotlib.colors.to_rgb(patch.get_facecolor()) == pytest.approx(
+            matplotlib.colors.to_rgb(ax.get_facecolor())
+        )
+        fig = ax.figure
+        fig.canvas.draw()
+        r = fig.canvas.get_renderer()
+        ink, box = halo.get_window_extent(r), patch.get_window_extent(r)
+        pt = fig.dpi / 72
+        assert box.x0 == pytest.approx(ink.x0 - 3 * pt, abs=1.5)
+        assert box.x1 == pytest.approx(ink.x1 + 3 * pt, abs=1.5)
+        assert patch.get_zorder() <= halo.get_zorder()
+    finally:
+        plt.close("all")
