@@ -227,3 +227,20 @@ def test_closed_form_plane_sections_are_hidden_by_their_own_quadric(surface, dir
 
 def _axes(surface):
     return (surface.r,) * 3 if isinstance(surface, lg.Sphere) else (surface.a, surface.b, surface.c)
+
+
+def test_level_line_families_differing_in_direction_or_function_are_both_drawn():
+    """Families that differ only in ``direction`` (or ``function``) are
+    different families: they compared equal once, and the family cache gave
+    the second the first one's curves (z sections twice, no x sections)."""
+    a, b = lg.LevelLines(5), lg.LevelLines(5, direction=(1, 0, 0))
+    same = lg.LevelLines(5, direction=(0.0, 0.0, 1.0))
+    assert a != b and a == same and hash(a) == hash(same)
+    assert lg.LevelLines(3, function=np.sin) != lg.LevelLines(3, function=np.cos)
+    scene = lg.Scene()
+    scene.add(lg.Torus(2, 0.7), a, b, contour=False)
+    d = scene.render(lg.ParallelProjector.from_angles(30, 25))
+    level = [s for s in d.strokes if s.family == "level"]
+    flat_x = [s for s in level if np.ptp(s.xyz[:, 0]) < 1e-9]
+    flat_z = [s for s in level if np.ptp(s.xyz[:, 2]) < 1e-9]
+    assert flat_x and flat_z and len(flat_x) + len(flat_z) == len(level)

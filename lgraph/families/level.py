@@ -160,14 +160,16 @@ class LevelLines(Family):
     view_dependent: ClassVar[bool] = False  # cached per surface (lgraph.families.cache)
 
     n: int = attrs.field(default=9, validator=count("LevelLines", 0, MAX_LEVELS))
+    # compared (and hashed) by value: families that differ only in their
+    # direction or function must not share a cache entry
     direction: np.ndarray = attrs.field(
         default=(0.0, 0.0, 1.0),
         converter=lambda v: vector3("LevelLines", "direction", v, nonzero=True),
-        eq=False,
+        eq=lambda v: tuple(v.tolist()),
     )
     values: tuple[float, ...] | None = attrs.field(default=None, converter=_values, kw_only=True)
     function: Callable[..., Any] | str | None = attrs.field(
-        default=None, converter=_function, kw_only=True, eq=False
+        default=None, converter=_function, kw_only=True
     )
     argument: str = attrs.field(default="point", kw_only=True)
     grid: int = attrs.field(
