@@ -112,7 +112,10 @@ def _check_one_stroke_across(drawing, surface, family):
         step = np.linalg.norm(np.diff(s.xyz, axis=0), axis=1)
         assert step.max() < 0.1 * size
         for i in _crossings(s, d):
-            assert step[i] <= 5 * np.median(step) + 1e-9 * size
+            # no gap at the seam: the chord there is like its neighbours (the
+            # renderer samples unevenly: densely near contours and flips)
+            near = step[max(i - 3, 0) : i + 4]
+            assert step[i] <= 5 * np.median(near) + 1e-9 * size
             found.append((s, i))
         for end in (s.uv[0], s.uv[-1]):
             for k in (0, 1):
