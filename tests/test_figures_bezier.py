@@ -225,3 +225,16 @@ def test_scene_files_and_the_command_line_take_the_new_save_keys(tmp_path: Path)
     path.write_text(path.read_text().replace('"0.02mm"', '"0.02 parsecs"'))
     with pytest.raises(lg.SceneFileError, match="save.precision"):
         lg.load_scene_file(path)
+
+
+def test_png_names_the_formats_that_take_curves_and_text(tmp_path):
+    """PNG is pixels: ``curves=``/``text=`` are refused with a message that
+    says which formats take them, and nothing is written."""
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(2, 4))
+    d = scene.render(lg.ParallelProjector(direction=(1, 2, 3)))
+    with pytest.raises(TypeError, match=r"curves= belong to the vector formats \(PDF, SVG, TikZ\)"):
+        d.save(tmp_path / "f.png", curves="bezier")
+    with pytest.raises(TypeError, match="curves= and text= belong"):
+        d.save(tmp_path / "f.png", curves="bezier", text="text")
+    assert list(tmp_path.iterdir()) == []

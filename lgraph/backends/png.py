@@ -281,6 +281,13 @@ def write_png(
         For a bad ``dpi``, ``size`` or ``supersample``, or an image larger than
         ``MAX_SIDE`` pixels per side.
     """
+    vector_only = sorted({"curves", "text"} & set(options))
+    if vector_only:
+        raise TypeError(
+            f"write_png: {' and '.join(f'{k}=' for k in vector_only)} belong to the vector "
+            "formats (PDF, SVG, TikZ); a PNG is pixels: for smooth curves in a very large "
+            "PNG render with a smaller tolerance (Scene.render(..., tolerance=...))"
+        )
     check_options("write_png", options, ("dpi", "size", "supersample"))
     if (
         not isinstance(supersample, numbers.Integral)
