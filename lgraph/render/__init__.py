@@ -139,6 +139,7 @@ def _strokes(
     # same for a batch (or a node's contour) in every view
     styles: dict[tuple[int, int, str], Style] = {}
     hidden_styles: dict[tuple[str, int], Style | None] = {}
+    surfaces: dict[int, Any] = {}  # part -> the surface its strokes lie on
     out: list[list[Stroke]] = [[] for _ in min_extent]
     for k, (c, p, dep, v) in enumerate(
         zip(
@@ -151,8 +152,11 @@ def _strokes(
         batch, node, _, first_id = s.parts[p]
         names = batch.curve_family
         family = batch.family if names is None else names[c - first_id]
+        surface = surfaces.get(p)
+        if surface is None:
+            surface = surfaces[p] = _own_surface(batch.surface, nodes[node])
         if family == "contour":  # an arrow's outline is drawn as family "arrow"
-            family = getattr(batch.surface, "outline_family", "contour")
+            family = getattr(surface, "outline_family", "contour")
         if dep:
             if (family, dep) not in hidden_styles:
                 hidden_styles[family, dep] = rule(family, dep)
@@ -169,9 +173,19 @@ def _strokes(
         curve = CurveRef(*ref, tu[slice(*bounds[k])], s.t0[c], s.t1[c], s.closed[c])
         uv_k = None if s.group[p] in s.no_uv else uv[k]
         out[v].append(
-            Stroke(xy[k], xyz[k], uv_k, not dep, family, batch.surface, style, dep, curve=curve)
+            Stroke(xy[k], xyz[k], uv_k, not dep, family, surface, style, dep, curve=curve)
         )
     return out
+
+
+def _own_surface(surface: Any, node: Node) -> Any:
+    """The node's own surface object for a batch's ``surface``: a cached
+    batch is shared by equal surfaces of several nodes
+    (:mod:`lgraph.families.cache`), and holds the first of them."""
+    own = node.surface
+    if surface is None or own is None or surface is own:
+        return surface
+    return own if type(own) is type(surface) and bool(own == surface) else surface
 
 
 def _classify(s: Samples, vis: Occlusion) -> None:

@@ -79,6 +79,7 @@ class Samples:
         self.cgroup = self.group[self.part]
         self.lcid = np.arange(sum(sizes)) - np.repeat(firsts, sizes)
         self.kparams = self._stack_kernels()
+        self._share_batches(sizes)
         self.t0 = np.concatenate([b.t0 for _, b, _, _ in entries])
         self.t1 = np.concatenate([b.t1 for _, b, _, _ in entries])
         self.closed = np.concatenate([b.closed for _, b, _, _ in entries])
@@ -152,6 +153,34 @@ class Samples:
                 self.lcid[first : first + n] += offset[int(self.src[i])]
         return stacked
 
+    def _share_batches(self, sizes: list[int]) -> None:
+        """Evaluation calls: the groups that evaluate one batch object (a
+        cached family drawn by equal surfaces of several nodes) in one call,
+        each row then moved by its node's transform.  Only nodes whose
+        transforms share a matrix are joined (their rows get ``x @ M.T`` at
+        once and their own offsets: the arithmetic of ``Transform.apply``).
+
+        Per curve ``egroup`` (its call's first group); ``joined``: call ->
+        its groups; ``coffset``: per curve, its node's offset (or None)."""
+        self.egroup = self.group.copy()
+        self.joined: dict[int, list[int]] = {}
+        leaders: dict[tuple[int, bytes | None], int] = {}
+        for i, p in enumerate(self.parts):
+            g = int(self.group[i])
+            if g != i or g in self.kparams:
+                continue
+            tr = p.transform
+            key = (id(p.batch), None if tr.is_identity else tr.matrix.tobytes())
+            lead = leaders.setdefault(key, g)
+            if lead != g:
+                self.joined.setdefault(lead, [lead]).append(g)
+                self.egroup[self.group == g] = lead
+        self.cgroup = self.egroup[self.part]
+        self.coffset = None
+        if any(not self.parts[g].transform.is_identity for g in self.joined):
+            offsets = [p.transform.offset for p in self.parts]
+            self.coffset = np.repeat(np.array(offsets).reshape(-1, 3), sizes, axis=0)
+
     def evaluate(
         self, cid: np.ndarray, t: np.ndarray, project: object
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
@@ -170,9 +199,14 @@ class Samples:
             else:
                 x, u = batch.evaluate(self.lcid[cid[rows]], t[rows])
             x = np.asarray(x, dtype=float).reshape(-1, 3)
-            xyz[rows] = x if transform.is_identity else transform.apply(x)
+            if transform.is_identity:
+                xyz[rows] = x
+            elif g in self.joined:  # each row with its own node's offset
+                xyz[rows] = x @ transform.matrix.T + self.coffset[cid[rows]]
+            else:
+                xyz[rows] = transform.apply(x)
             if u is None:
-                self.no_uv.add(g)
+                self.no_uv.update(self.joined.get(g, [g]))
             else:
                 uv[rows] = np.asarray(u, float).reshape(-1, 2)
         return xyz, uv, None if project is None else self.views.project(xyz, self.view[cid])
