@@ -283,3 +283,6 @@ def test_equal_surfaces_of_several_nodes_share_batches_and_keep_their_own_surfac
     family_cache.set_max_entries(0)
     _same(cached, scene.render(p, hidden_lines=True))
     assert not (lg.Sphere(0.4) == lg.Ellipsoid(0.4, 0.4, 0.4))  # no sharing across classes
+    # their exact contours share one evaluation kernel (one call for all nodes)
+    kernels = {id(s.contour(p)[0].kernel[0]) for s in spheres}
+    assert len(kernels) == 1

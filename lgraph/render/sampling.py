@@ -63,12 +63,20 @@ class Samples:
             [src.setdefault((p.node, id(p.batch)), i) for i, p in enumerate(self.parts)]
         )
         # evaluation groups: a source, or the sources whose batches share a
-        # kernel (the contours of one surface in every view): one call each
-        group: dict[tuple[int, int], int] = {}
+        # kernel (the contours of one surface in every view) or a batch (a
+        # cached family drawn by equal surfaces of several nodes): one call
+        # each.  Nodes are joined only when their transforms share a matrix:
+        # each row then gets ``x @ M.T`` and its own node's offset, the
+        # arithmetic of ``Transform.apply``
+        group: dict[tuple[bytes | None, int], int] = {}
         self.group = np.array(
             [
                 group.setdefault(
-                    (p.node, id(p.batch.kernel[0] if p.batch.kernel else p.batch)), int(j)
+                    (
+                        None if p.transform.is_identity else p.transform.matrix.tobytes(),
+                        id(p.batch.kernel[0] if p.batch.kernel else p.batch),
+                    ),
+                    int(j),
                 )
                 for p, j in zip(self.parts, self.src)
             ]
@@ -79,7 +87,7 @@ class Samples:
         self.cgroup = self.group[self.part]
         self.lcid = np.arange(sum(sizes)) - np.repeat(firsts, sizes)
         self.kparams = self._stack_kernels()
-        self._share_batches(sizes)
+        self._offsets(sizes)
         self.t0 = np.concatenate([b.t0 for _, b, _, _ in entries])
         self.t1 = np.concatenate([b.t1 for _, b, _, _ in entries])
         self.closed = np.concatenate([b.closed for _, b, _, _ in entries])
@@ -104,7 +112,7 @@ class Samples:
         n = len(self.t)
         self.xyz, self.uv = np.empty((n, 3)), np.full((n, 2), np.nan)
         for g, params in self.kparams.items():  # stacked kernels: one call a group
-            batch, _, tr, _ = self.parts[g]
+            batch = self.parts[g].batch
             rows = np.concatenate(
                 [
                     np.arange(part.first * k, (part.first + len(part.batch)) * k)
@@ -113,7 +121,7 @@ class Samples:
                 ]
             )
             x, self.uv[rows] = batch.kernel[0](params[self.lcid[self.cid[rows]]], self.t[rows])
-            self.xyz[rows] = x if tr.is_identity else tr.apply(x)
+            self.xyz[rows] = self._moved(g, x, self.cid[rows])
         for p, ((_, b, tr, _), first) in enumerate(zip(entries, firsts)):
             rows = slice(first * k, (first + len(b)) * k)
             if self.group[p] in self.kparams and self.src[p] == p:
@@ -153,33 +161,27 @@ class Samples:
                 self.lcid[first : first + n] += offset[int(self.src[i])]
         return stacked
 
-    def _share_batches(self, sizes: list[int]) -> None:
-        """Evaluation calls: the groups that evaluate one batch object (a
-        cached family drawn by equal surfaces of several nodes) in one call,
-        each row then moved by its node's transform.  Only nodes whose
-        transforms share a matrix are joined (their rows get ``x @ M.T`` at
-        once and their own offsets: the arithmetic of ``Transform.apply``).
-
-        Per curve ``egroup`` (its call's first group); ``joined``: call ->
-        its groups; ``coffset``: per curve, its node's offset (or None)."""
-        self.egroup = self.group.copy()
-        self.joined: dict[int, list[int]] = {}
-        leaders: dict[tuple[int, bytes | None], int] = {}
+    def _offsets(self, sizes: list[int]) -> None:
+        """``joined``: the groups of several moved nodes; ``coffset``: per
+        curve, its node's offset (None when no group is joined)."""
+        nodes: dict[int, set[int]] = {}
         for i, p in enumerate(self.parts):
-            g = int(self.group[i])
-            if g != i or g in self.kparams:
-                continue
-            tr = p.transform
-            key = (id(p.batch), None if tr.is_identity else tr.matrix.tobytes())
-            lead = leaders.setdefault(key, g)
-            if lead != g:
-                self.joined.setdefault(lead, [lead]).append(g)
-                self.egroup[self.group == g] = lead
-        self.cgroup = self.egroup[self.part]
+            if not p.transform.is_identity:
+                nodes.setdefault(int(self.group[i]), set()).add(p.node)
+        self.joined = {g for g, ns in nodes.items() if len(ns) > 1}
         self.coffset = None
-        if any(not self.parts[g].transform.is_identity for g in self.joined):
-            offsets = [p.transform.offset for p in self.parts]
-            self.coffset = np.repeat(np.array(offsets).reshape(-1, 3), sizes, axis=0)
+        if self.joined:
+            offsets = np.array([p.transform.offset for p in self.parts]).reshape(-1, 3)
+            self.coffset = np.repeat(offsets, sizes, axis=0)
+
+    def _moved(self, g: int, x: np.ndarray, cid: np.ndarray) -> np.ndarray:
+        """Points ``x`` of curves ``cid`` of group ``g`` in world coordinates."""
+        transform = self.parts[g].transform
+        if transform.is_identity:
+            return x
+        if g in self.joined:  # each row with its own node's offset
+            return x @ transform.matrix.T + self.coffset[cid]
+        return transform.apply(x)
 
     def evaluate(
         self, cid: np.ndarray, t: np.ndarray, project: object
@@ -193,20 +195,14 @@ class Samples:
         if not n:
             return xyz, uv, None if project is None else np.empty((n, 2))
         for g, rows in runs(self.cgroup[cid]):
-            batch, _, transform, _ = self.parts[g]
+            batch = self.parts[g].batch
             if g in self.kparams:
                 x, u = batch.kernel[0](self.kparams[g][self.lcid[cid[rows]]], t[rows])
             else:
                 x, u = batch.evaluate(self.lcid[cid[rows]], t[rows])
-            x = np.asarray(x, dtype=float).reshape(-1, 3)
-            if transform.is_identity:
-                xyz[rows] = x
-            elif g in self.joined:  # each row with its own node's offset
-                xyz[rows] = x @ transform.matrix.T + self.coffset[cid[rows]]
-            else:
-                xyz[rows] = transform.apply(x)
+            xyz[rows] = self._moved(g, np.asarray(x, dtype=float).reshape(-1, 3), cid[rows])
             if u is None:
-                self.no_uv.update(self.joined.get(g, [g]))
+                self.no_uv.add(g)
             else:
                 uv[rows] = np.asarray(u, float).reshape(-1, 2)
         return xyz, uv, None if project is None else self.views.project(xyz, self.view[cid])
