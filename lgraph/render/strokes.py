@@ -81,22 +81,39 @@ def run_strokes(
     # same for a batch (or a node's contour) in every view
     styles: dict[tuple[int, int, str], Style] = {}
     hidden_styles: dict[tuple[str, int], Style | None] = {}
-    surfaces: dict[int, Any] = {}  # part -> the surface its strokes lie on
+    # what every stroke of a part shares: batch, node, first curve id, curve
+    # names, surface (its node's own), transform, parameters drawn or not
+    shared: dict[int, tuple] = {}
     out: list[list[Stroke]] = [[] for _ in min_extent]
-    for k, (c, p, dep, v) in enumerate(
+    projectors = s.views.projectors
+    crow = run_cid[rows]
+    tus = [tu[i:j] for i, j in bounds]
+    for k, (c, p, dep, v, t0, t1, closed) in enumerate(
         zip(
-            run_cid[rows].tolist(),
-            s.part[run_cid[rows]].tolist(),
+            crow.tolist(),
+            s.part[crow].tolist(),
             run_depth[rows].tolist(),
             run_view[rows].tolist(),
+            s.t0[crow].tolist(),
+            s.t1[crow].tolist(),
+            s.closed[crow].tolist(),
         )
     ):
-        batch, node, _, first_id = s.parts[p]
-        names = batch.curve_family
+        part = shared.get(p)
+        if part is None:
+            batch, node, transform, first_id = s.parts[p]
+            surface = _own_surface(batch.surface, nodes[node])
+            part = shared[p] = (
+                batch,
+                node,
+                first_id,
+                batch.curve_family,
+                surface,
+                transform,
+                s.group[p] in s.no_uv,
+            )
+        batch, node, first_id, names, surface, transform, no_uv = part
         family = batch.family if names is None else names[c - first_id]
-        surface = surfaces.get(p)
-        if surface is None:
-            surface = surfaces[p] = _own_surface(batch.surface, nodes[node])
         if family == "contour":  # an arrow's outline is drawn as family "arrow"
             family = getattr(surface, "outline_family", "contour")
         if dep:
@@ -111,11 +128,19 @@ def run_strokes(
             if style is None:
                 style = styles[key] = batch.style or nodes[node].style_for(family)
         # the exact curve of the stroke (lgraph.bezier: curves="bezier" output)
-        ref = (batch, c - first_id, s.parts[p].transform, s.views.projectors[v])
-        curve = CurveRef(*ref, tu[slice(*bounds[k])], s.t0[c], s.t1[c], s.closed[c])
-        uv_k = None if s.group[p] in s.no_uv else uv[k]
+        curve = CurveRef(batch, c - first_id, transform, projectors[v], tus[k], t0, t1, closed)
         out[v].append(
-            Stroke(xy[k], xyz[k], uv_k, not dep, family, surface, style, dep, curve=curve)
+            Stroke(
+                xy[k],
+                xyz[k],
+                None if no_uv else uv[k],
+                not dep,
+                family,
+                surface,
+                style,
+                dep,
+                curve=curve,
+            )
         )
     return out
 
