@@ -259,3 +259,30 @@ def test_derived_data_lives_and_dies_with_its_entry():
     family_cache.derived(batch, "k", compute)
     family_cache.clear()  # and with clear()
     assert family_cache.derived(batch, "k", compute) == 7
+
+
+def test_equal_surfaces_of_several_nodes_share_batches_and_keep_their_own_surface():
+    # equal spheres in different nodes: one cached entry, one batch object;
+    # every stroke still names its own node's surface, and the render equals
+    # the uncached one (which evaluates every node on its own)
+    spheres = [lg.Sphere(0.4) for _ in range(3)]
+    scene = lg.Scene()
+    for k, s in enumerate(spheres):
+        scene.add(s, lg.ParameterLines(3, 4), transform=lg.translate(k, 0.5 * k, 0))
+    p = lg.CentralProjector.from_angles(30, 25, 12)
+    batches = [scene.batches(node, p)[0] for node in scene.nodes]
+    assert batches[0] is batches[1] is batches[2]
+    assert family_cache.info()["entries"] == 1
+    cached = scene.render(p, hidden_lines=True)
+    owners = {id(s) for s in spheres}
+    assert {id(st.surface) for st in cached.strokes} == owners
+    for st in cached.strokes:  # on its own sphere, at that node's place
+        k = next(i for i, s in enumerate(spheres) if s is st.surface)
+        centre = np.array([k, 0.5 * k, 0.0])
+        assert np.allclose(np.linalg.norm(st.xyz - centre, axis=1), 0.4, atol=1e-12)
+    family_cache.set_max_entries(0)
+    _same(cached, scene.render(p, hidden_lines=True))
+    assert not (lg.Sphere(0.4) == lg.Ellipsoid(0.4, 0.4, 0.4))  # no sharing across classes
+    # their exact contours share one evaluation kernel (one call for all nodes)
+    kernels = {id(s.contour(p)[0].kernel[0]) for s in spheres}
+    assert len(kernels) == 1

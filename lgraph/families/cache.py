@@ -11,10 +11,13 @@ Safety:
 
 * What a family draws depends only on the family and the surface (curves are
   in the node's local frame; its transform and style are applied later).  The
-  key is the surface object itself (by identity; the entry holds the
-  surface, so the identity cannot pass to another object while the entry
-  lives) and the family (by value for the frozen families of lgraph, else by
-  identity).  Surfaces and families are
+  key is the surface (by value for the hashable frozen surfaces of lgraph,
+  so that equal spheres in different nodes share their batches; else by
+  identity: the entry holds the surface, so the identity cannot pass to
+  another object while the entry lives) and the family (by value for the
+  frozen families of lgraph, else by identity).  A shared batch's
+  ``surface`` is the first equal surface: the renderer takes each stroke's
+  surface from its node.  Surfaces and families are
   immutable, so an entry can never go stale: a changed scene holds new
   surfaces or families, which miss the cache and are computed afresh.  The
   same surface in several nodes (or groups) shares its entries.
@@ -70,7 +73,7 @@ MAX_ENTRIES = 64
 
 _lock = threading.RLock()
 _max_entries = MAX_ENTRIES
-# LRU order over (id of the surface, family key) -> (surface, family, list of batches)
+# LRU order over (surface key, family key) -> (surface, family, list of batches)
 _entries: OrderedDict[tuple[int, Any], tuple[Any, Any, list]] = OrderedDict()
 _stats = {"hits": 0, "misses": 0}
 # id of a batch held by an entry -> (the batch, {key: data derived from it})
@@ -83,6 +86,19 @@ def _family_key(family: Family) -> Any:
     except TypeError:  # an unhashable family: its identity (the entry holds it)
         return ("id", id(family))
     return family
+
+
+def _surface_key(surface: Any) -> Any:
+    """A surface of lgraph's own by value when it hashes (frozen attrs
+    classes: equal fields, equal curves), any other by identity."""
+    if type(surface).__module__.startswith("lgraph."):
+        try:
+            hash(surface)
+        except TypeError:
+            pass
+        else:
+            return ("value", surface)
+    return ("id", id(surface))
 
 
 def is_view_dependent(family: Family) -> bool:
@@ -104,7 +120,7 @@ def family_batches(
         return family.batches(node.surface, projector)
     surface = node.surface
     with _lock:
-        key = (id(surface), _family_key(family))
+        key = (_surface_key(surface), _family_key(family))
         found = _entries.get(key)
         if found is not None:
             _entries.move_to_end(key)

@@ -20,7 +20,7 @@
    front of it, and where the count changes along a curve the change is
    located like a flip (:mod:`lgraph.render.depth`);
 7. runs of equal visibility and depth become strokes, hidden ones styled by
-   the ``hidden_style`` rule;
+   the ``hidden_style`` rule (:mod:`lgraph.render.strokes`);
 8. labels and point marks are placed and hidden like the lines
    (:mod:`lgraph.render.marks`).
 """
@@ -37,7 +37,6 @@ import numpy as np
 
 from .. import _tolerance as tol
 from .._validate import as_number, positive_finite
-from ..bezier import CurveRef, unwrapped
 from ..drawing import Drawing, Stroke
 from ..geometry.transforms import Transform
 from ..page import Page, _page
@@ -49,6 +48,7 @@ from .flips import locate_flips, seed_crossings
 from .intersections import intersection_batches, meeting_pairs
 from .occlusion import NotBatchable, Occlusion
 from .sampling import Samples, check_points, refine
+from .strokes import run_strokes
 from .twins import twin_groups
 from .views import Views
 
@@ -76,102 +76,6 @@ def local_projector(projector: Projector, transform: Transform) -> Projector:
     d = inv.apply_vector(projector.frame[2])
     up = inv.apply_vector(projector.frame[1])
     return ParallelProjector(direction=d, up=up)
-
-
-def _strokes(
-    s: Samples,
-    nodes: tuple[Node, ...],
-    hidden_lines: bool,
-    rule: Callable[[str, int], Style | None],
-    min_extent: list[float],
-    depth: np.ndarray,
-) -> list[list[Stroke]]:
-    """Split samples into runs of equal visibility and occlusion depth
-    (``depth``, per sample), one stroke per run; the strokes of each view.
-    Hidden runs are styled by ``rule(family, depth)`` and dropped where it
-    gives None.
-
-    The last run of a closed curve joins its first when both have one state.
-    Runs whose projection is smaller than ``min_extent`` of their view
-    (degenerate curves such as a parameter circle through a cone's vertex)
-    are dropped."""
-    n = len(s.t)
-    brk = np.flatnonzero((s.cid[1:] != s.cid[:-1]) | (depth[1:] != depth[:-1])) + 1
-    starts = np.concatenate([[0], brk])
-    ends = np.concatenate([brk, [n]])
-    # projected extent of every run at once
-    extent = np.max(np.maximum.reduceat(s.xy, starts) - np.minimum.reduceat(s.xy, starts), axis=1)
-    run_cid, run_depth = s.cid[starts], depth[starts]
-    run_hidden = run_depth > 0
-    new_curve = run_cid[1:] != run_cid[:-1]
-    first = np.flatnonzero(np.concatenate([[True], new_curve]))  # first run of each curve
-    last = np.flatnonzero(np.concatenate([new_curve, [True]]))
-    join = (last != first) & s.closed[run_cid[first]]
-    join &= run_depth[first] == run_depth[last]
-    partner = np.full(len(starts), -1)  # last run of a closed curve -> its first run
-    partner[last[join]] = first[join]
-    keep = np.ones(len(starts), dtype=bool)
-    keep[first[join]] = False  # drawn with the curve's last run
-    if not hidden_lines:
-        keep &= ~run_hidden
-    joined = partner >= 0
-    size = np.where(joined, np.maximum(extent, extent[partner]), extent)
-    run_view = s.view[run_cid]
-    keep &= (size > np.asarray(min_extent)[run_view]) & (joined | (ends - starts >= 2))
-    rows = np.flatnonzero(keep)
-    # every kept run's samples (a joined run: then its curve's first run, less
-    # the shared sample) gathered in one go, then cut into strokes
-    a, b = starts[rows], ends[rows]
-    pr = partner[rows]
-    fa = np.where(pr >= 0, starts[pr] + 1, 0)
-    fb = np.where(pr >= 0, ends[pr], 0)
-    seg_start = np.column_stack([a, fa]).ravel()
-    seg_len = np.column_stack([b - a, fb - fa]).ravel()
-    total = np.cumsum(seg_len)
-    n_idx = int(total[-1]) if len(total) else 0
-    idx = np.repeat(seg_start - (total - seg_len), seg_len) + np.arange(n_idx)
-    ends_k = total[1::2].tolist()  # where each stroke's samples end
-    bounds = list(zip([0, *ends_k[:-1]], ends_k))
-    xy, xyz, uv = ([g[i:j] for i, j in bounds] for g in (s.xy[idx], s.xyz[idx], s.uv[idx]))
-    lens = seg_len.reshape(-1, 2).sum(axis=1)  # the strokes' parameters, increasing:
-    tu = unwrapped(s.t[idx], lens, (s.t1 - s.t0)[run_cid[rows]])
-    # a style depends on the batch's own style, the node and the family: the
-    # same for a batch (or a node's contour) in every view
-    styles: dict[tuple[int, int, str], Style] = {}
-    hidden_styles: dict[tuple[str, int], Style | None] = {}
-    out: list[list[Stroke]] = [[] for _ in min_extent]
-    for k, (c, p, dep, v) in enumerate(
-        zip(
-            run_cid[rows].tolist(),
-            s.part[run_cid[rows]].tolist(),
-            run_depth[rows].tolist(),
-            run_view[rows].tolist(),
-        )
-    ):
-        batch, node, _, first_id = s.parts[p]
-        names = batch.curve_family
-        family = batch.family if names is None else names[c - first_id]
-        if family == "contour":  # an arrow's outline is drawn as family "arrow"
-            family = getattr(batch.surface, "outline_family", "contour")
-        if dep:
-            if (family, dep) not in hidden_styles:
-                hidden_styles[family, dep] = rule(family, dep)
-            style = hidden_styles[family, dep]
-            if style is None:  # the rule draws no such hidden stroke
-                continue
-        else:
-            key = (id(batch.style), node, family)
-            style = styles.get(key)
-            if style is None:
-                style = styles[key] = batch.style or nodes[node].style_for(family)
-        # the exact curve of the stroke (lgraph.bezier: curves="bezier" output)
-        ref = (batch, c - first_id, s.parts[p].transform, s.views.projectors[v])
-        curve = CurveRef(*ref, tu[slice(*bounds[k])], s.t0[c], s.t1[c], s.closed[c])
-        uv_k = None if s.group[p] in s.no_uv else uv[k]
-        out[v].append(
-            Stroke(xy[k], xyz[k], uv_k, not dep, family, batch.surface, style, dep, curve=curve)
-        )
-    return out
 
 
 def _classify(s: Samples, vis: Occlusion) -> None:
@@ -411,7 +315,7 @@ def _render(
         depth = occlusion_depth(s, vis, every, diag)
     else:
         depth = s.hidden.astype(np.int64)
-    strokes = _strokes(s, nodes, hidden_lines, rule, [1e-12 * d for d in diag], depth)
+    strokes = run_strokes(s, nodes, hidden_lines, rule, [1e-12 * d for d in diag], depth)
     _warn_unused_styles(s, nodes)
     return [
         _with_marks(scene, strokes[k], nodes, p, hidden_lines, rule, page, vis, k)

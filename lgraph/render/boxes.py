@@ -121,6 +121,8 @@ class BoxGrid:
         self.cell_start = np.concatenate([[0], np.cumsum(counts)[:-1]])
         self.cell_count = counts
         self.cell_items = np.array([i for c in cells for i in c], dtype=np.int64)
+        # the boxes' sides as contiguous columns (gathered faster than rows)
+        self.sides = [np.ascontiguousarray(self.box[:, i]) for i in range(4)]
 
     def _cell(self, values: np.ndarray, axis: int) -> np.ndarray:
         g, origin, size = self.grid[0], self.grid[axis], self.grid[axis + 2]
@@ -139,8 +141,8 @@ class BoxGrid:
         pt = np.repeat(np.arange(len(xy)), counts)
         first = np.repeat(self.cell_start[cell] + counts - np.cumsum(counts), counts)
         q = self.cell_items[first + np.arange(len(pt))]
-        box = self.box[q]
-        p = xy[pt]
-        inside = (p[:, 0] >= box[:, 0]) & (p[:, 0] <= box[:, 2])
-        inside &= (p[:, 1] >= box[:, 1]) & (p[:, 1] <= box[:, 3])
+        x0, y0, x1, y1 = (side[q] for side in self.sides)
+        x, y = xy[:, 0][pt], xy[:, 1][pt]
+        inside = (x >= x0) & (x <= x1)
+        inside &= (y >= y0) & (y <= y1)
         return pt[inside], q[inside]

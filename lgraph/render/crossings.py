@@ -191,14 +191,21 @@ def _outline_crossings(
     meet = (box[:, None, 0] <= box[None, :, 2]) & (box[:, None, 2] >= box[None, :, 0])
     meet &= (box[:, None, 1] <= box[None, :, 3]) & (box[:, None, 3] >= box[None, :, 1])
     meet &= vis.first[vis.q_node][:, None] != vis.first[vis.q_node][None, :]  # not twins
-    for j, q in zip(*np.nonzero(meet & (stops > starts)[:, None])):
-        rows = order[starts[j] : stops[j]]
-        bx0, by0, bx1, by1 = box[q]
-        rows = rows[(x1[rows] >= bx0) & (x0[rows] <= bx1) & (y1[rows] >= by0) & (y0[rows] <= by1)]
-        if len(rows):
-            qq, f = _conic_roots(s.xy, chord[rows], C[q], origin)
-            found_q.append(qq)
-            found_f.append(f)
+    # every (chord, outline) pair at once: the chords of ellipsoid j repeated
+    # for each outline q meeting j's, then culled by q's box; one root call
+    # (the same arithmetic per row as one conic at a time)
+    js, qs = np.nonzero(meet & (stops > starts)[:, None])
+    if not len(js):
+        return found_q, found_f
+    n = stops[js] - starts[js]
+    pos = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n) + np.repeat(starts[js], n)
+    rows, q = order[pos], np.repeat(qs, n)
+    bx0, by0, bx1, by1 = (box[:, i][q] for i in range(4))
+    keep = (x1[rows] >= bx0) & (x0[rows] <= bx1) & (y1[rows] >= by0) & (y0[rows] <= by1)
+    if keep.any():
+        qq, f = _conic_roots(s.xy, chord[rows[keep]], np.take(C, q[keep], axis=0), origin)
+        found_q.append(qq)
+        found_f.append(f)
     return found_q, found_f
 
 

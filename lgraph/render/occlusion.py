@@ -277,7 +277,9 @@ class Occlusion:
             if len(pt) == len(xyz) and self.nq == 1:  # one quadric, every point in its box
                 o, v, sm, ow, kd = xyz - self.centre, dirs, smax, owner, kind
             else:
-                o, v, sm = xyz[pt] - self.centre, dirs[pt], smax[pt]
+                # np.take: row gathers several times faster than fancy indexing
+                o, v = np.take(xyz, pt, axis=0) - self.centre, np.take(dirs, pt, axis=0)
+                sm = smax[pt]
                 ow, kd = owner[pt], kind[pt]
             coef = self._coefficients(q)
             own = np.where(self._owned(o, q, ow, kd, coef), kd, OFF).astype(np.int8)
@@ -442,7 +444,12 @@ class Occlusion:
         if len(q) and (self.nq == 1 or np.all(q == q[0])):
             k = int(q[0])
             return self.q_A[k], self.q_b[k], self.q_d[k], self.q_eps[k]
-        return self.q_A[q], self.q_b[q], self.q_d[q], self.q_eps[q]
+        return (
+            np.take(self.q_A, q, axis=0),
+            np.take(self.q_b, q, axis=0),
+            self.q_d[q],
+            self.q_eps[q],
+        )
 
     def margin(
         self,

@@ -63,12 +63,20 @@ class Samples:
             [src.setdefault((p.node, id(p.batch)), i) for i, p in enumerate(self.parts)]
         )
         # evaluation groups: a source, or the sources whose batches share a
-        # kernel (the contours of one surface in every view): one call each
-        group: dict[tuple[int, int], int] = {}
+        # kernel (the contours of one surface in every view) or a batch (a
+        # cached family drawn by equal surfaces of several nodes): one call
+        # each.  Nodes are joined only when their transforms share a matrix:
+        # each row then gets ``x @ M.T`` and its own node's offset, the
+        # arithmetic of ``Transform.apply``
+        group: dict[tuple[bytes | None, int], int] = {}
         self.group = np.array(
             [
                 group.setdefault(
-                    (p.node, id(p.batch.kernel[0] if p.batch.kernel else p.batch)), int(j)
+                    (
+                        None if p.transform.is_identity else p.transform.matrix.tobytes(),
+                        id(p.batch.kernel[0] if p.batch.kernel else p.batch),
+                    ),
+                    int(j),
                 )
                 for p, j in zip(self.parts, self.src)
             ]
@@ -79,6 +87,7 @@ class Samples:
         self.cgroup = self.group[self.part]
         self.lcid = np.arange(sum(sizes)) - np.repeat(firsts, sizes)
         self.kparams = self._stack_kernels()
+        self._offsets(sizes)
         self.t0 = np.concatenate([b.t0 for _, b, _, _ in entries])
         self.t1 = np.concatenate([b.t1 for _, b, _, _ in entries])
         self.closed = np.concatenate([b.closed for _, b, _, _ in entries])
@@ -103,7 +112,7 @@ class Samples:
         n = len(self.t)
         self.xyz, self.uv = np.empty((n, 3)), np.full((n, 2), np.nan)
         for g, params in self.kparams.items():  # stacked kernels: one call a group
-            batch, _, tr, _ = self.parts[g]
+            batch = self.parts[g].batch
             rows = np.concatenate(
                 [
                     np.arange(part.first * k, (part.first + len(part.batch)) * k)
@@ -112,7 +121,7 @@ class Samples:
                 ]
             )
             x, self.uv[rows] = batch.kernel[0](params[self.lcid[self.cid[rows]]], self.t[rows])
-            self.xyz[rows] = x if tr.is_identity else tr.apply(x)
+            self.xyz[rows] = self._moved(g, x, self.cid[rows])
         for p, ((_, b, tr, _), first) in enumerate(zip(entries, firsts)):
             rows = slice(first * k, (first + len(b)) * k)
             if self.group[p] in self.kparams and self.src[p] == p:
@@ -152,6 +161,35 @@ class Samples:
                 self.lcid[first : first + n] += offset[int(self.src[i])]
         return stacked
 
+    def _offsets(self, sizes: list[int]) -> None:
+        """``joined``: the groups of several moved nodes; ``coffset``: per
+        curve, its node's offset, by column (None when no group is joined)."""
+        nodes: dict[int, set[int]] = {}
+        for i, p in enumerate(self.parts):
+            if not p.transform.is_identity:
+                nodes.setdefault(int(self.group[i]), set()).add(p.node)
+        self.joined = {g for g, ns in nodes.items() if len(ns) > 1}
+        self.coffset = None
+        if self.joined:  # column by column: gathered faster than rows
+            offsets = np.array([p.transform.offset for p in self.parts]).reshape(-1, 3)
+            self.coffset = [np.repeat(offsets[:, i], sizes) for i in range(3)]
+
+    def _moved(self, g: int, x: np.ndarray, cid: np.ndarray) -> np.ndarray:
+        """Points ``x`` of curves ``cid`` of group ``g`` in world coordinates."""
+        transform = self.parts[g].transform
+        if transform.is_identity:
+            return x
+        if g not in self.joined:
+            return transform.apply(x)
+        # each row with its own node's offset; ``x @ I`` is ``x`` exactly (the
+        # zero terms add nothing), so translations skip the product
+        m = transform.matrix
+        y = x if np.array_equal(m, np.eye(3)) else x @ m.T
+        out = np.empty_like(y)
+        for i in range(3):
+            np.add(y[:, i], self.coffset[i][cid], out=out[:, i])
+        return out
+
     def evaluate(
         self, cid: np.ndarray, t: np.ndarray, project: object
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
@@ -164,13 +202,12 @@ class Samples:
         if not n:
             return xyz, uv, None if project is None else np.empty((n, 2))
         for g, rows in runs(self.cgroup[cid]):
-            batch, _, transform, _ = self.parts[g]
+            batch = self.parts[g].batch
             if g in self.kparams:
                 x, u = batch.kernel[0](self.kparams[g][self.lcid[cid[rows]]], t[rows])
             else:
                 x, u = batch.evaluate(self.lcid[cid[rows]], t[rows])
-            x = np.asarray(x, dtype=float).reshape(-1, 3)
-            xyz[rows] = x if transform.is_identity else transform.apply(x)
+            xyz[rows] = self._moved(g, np.asarray(x, dtype=float).reshape(-1, 3), cid[rows])
             if u is None:
                 self.no_uv.add(g)
             else:

@@ -7,7 +7,9 @@ stale.  :func:`per_surface` keeps such results keyed by the surface object's
 identity: an entry goes when its surface is garbage-collected, and at most
 :data:`MAX_SURFACES` surfaces are remembered (the oldest is dropped first), so
 the memory held is bounded (about 2 MB a surface with a numeric contour).
-No derivation: bookkeeping only.
+:func:`per_value` keeps results that equal surfaces share (lgraph's own
+hashable classes: equal fields, equal results), so that the equal spheres of
+many nodes share one evaluation kernel.  No derivation: bookkeeping only.
 
 >>> import lgraph as lg
 >>> s = lg.Sphere(1)
@@ -20,11 +22,13 @@ No derivation: bookkeeping only.
 
 from __future__ import annotations
 
+import threading
 import weakref
+from collections import OrderedDict
 from collections.abc import Callable, Hashable
 from typing import Any, TypeVar
 
-__all__ = ["per_surface", "clear", "MAX_SURFACES"]
+__all__ = ["per_surface", "per_value", "by_value", "clear", "MAX_SURFACES"]
 
 T = TypeVar("T")
 
@@ -61,6 +65,53 @@ def per_surface(surface: Any, key: Hashable, compute: Callable[[], T]) -> T:
     return table[key]
 
 
+# a surface (by value) -> its results; strong references, the least recently
+# used surface dropped first
+_BY_VALUE: OrderedDict[Any, dict[Hashable, Any]] = OrderedDict()
+_lock = threading.Lock()
+
+
+def by_value(surface: Any) -> bool:
+    """Whether :func:`per_value` keeps ``surface``'s results by value (a
+    hashable surface of lgraph's own)."""
+    if not type(surface).__module__.startswith("lgraph."):
+        return False
+    try:
+        hash(surface)
+    except TypeError:
+        return False
+    return True
+
+
+def per_value(surface: Any, key: Hashable, compute: Callable[[], T]) -> T:
+    """``compute()`` the first time ``key`` is asked of any surface equal to
+    this one, for lgraph's own hashable surfaces (frozen attrs classes: equal
+    fields give equal results); :func:`per_surface` for any other.  The
+    result must not depend on which of the equal surfaces computed it.
+
+    >>> import lgraph as lg
+    >>> per_value(lg.Sphere(2), "demo", lambda: []) is per_value(lg.Sphere(2), "demo", list)
+    True
+    """
+    if not by_value(surface):
+        return per_surface(surface, key, compute)
+    with _lock:
+        table = _BY_VALUE.get(surface)
+        if table is not None and key in table:
+            _BY_VALUE.move_to_end(surface)
+            return table[key]
+    value = compute()
+    with _lock:
+        table = _BY_VALUE.get(surface)
+        if table is None:
+            while len(_BY_VALUE) >= MAX_SURFACES:
+                _BY_VALUE.popitem(last=False)
+            table = _BY_VALUE[surface] = {}
+        return table.setdefault(key, value)
+
+
 def clear() -> None:
     """Forget every surface's results."""
     _MEMO.clear()
+    with _lock:
+        _BY_VALUE.clear()

@@ -28,7 +28,7 @@ from .._validate import as_number, finite_positive
 from ..curves import CurveBatch
 from ..geometry.vectors import cross3
 from ._base import CONTOUR, Domain, Surface
-from ._memo import per_surface
+from ._memo import by_value, per_value
 from ._quadric_ray import quadric_ray_hits
 
 __all__ = ["Quadric", "Ellipsoid", "Sphere"]
@@ -190,7 +190,8 @@ def _affine_circle_batch(
     """Closed curve ``x(t) = to_x @ (center + radius (cos t e1 + sin t e2))``,
     i.e. the ellipse ``c + p cos t + q sin t``; its evaluation is the
     surface's ellipse kernel (one call for the contours of all views)."""
-    kernel = per_surface(surface, "ellipse kernel", lambda: _EllipseKernel(surface))
+    # shared by equal surfaces: the contours of many equal spheres in one call
+    kernel = per_value(surface, "ellipse kernel", lambda: _EllipseKernel(surface))
     params = np.concatenate([to_x @ center, radius * (to_x @ e1), radius * (to_x @ e2)])[None]
 
     def evaluate(idx: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -213,9 +214,10 @@ class _EllipseKernel:
     ``surface``, with their surface parameters."""
 
     def __init__(self, surface: Quadric) -> None:
-        # weak: the kernel is kept per surface (``per_surface``), and its batches
-        # hold the surface while they are evaluated
-        self.surface = weakref.ref(surface)
+        # weak where the kernel is kept per surface object (``per_surface``:
+        # its batches hold the surface while they are evaluated); held where
+        # equal surfaces share it (``per_value``, a bounded table)
+        self.surface = (lambda: surface) if by_value(surface) else weakref.ref(surface)
 
     def __call__(self, params: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         x = params[:, 0:3] + np.cos(t)[:, None] * params[:, 3:6]
