@@ -102,16 +102,21 @@ def test_every_family_stays_inside_the_domain(name):
     calls: list = []
     s = lg.ParametricSurface(strict(func, r1, r2, calls), r1, r2, periodic=periodic)
     glued = periodic != (False, False)
-    # glued patches (numeric contours of closed surfaces are slower): the
-    # families that cross seams, one view with hidden lines
+    # every family once (their curves do not depend on the view); the ray
+    # tests and contours of hidden lines in parallel and central views with
+    # parameter lines (glued patches, whose numeric contours are slower: the
+    # families that cross seams, hidden lines in one view)
     families = _families(r1, r2)
     if glued:
         families = [f for f in families if not isinstance(f, (lg.ParabolicLines, lg.Umbilics))]
-    for projector, hidden in VIEWS[1:2] if glued else VIEWS:
+    views = VIEWS[1:2] if glued else VIEWS
+    for k, (projector, hidden) in enumerate(views):
         scene = lg.Scene()
-        scene.add(s, *families)
+        scene.add(s, *(families if k == 0 else [lg.ParameterLines(4, 4)]))
         drawing = scene.render(projector, hidden_lines=hidden)
         assert drawing.strokes
+        if hidden:
+            assert not all(st.visible for st in drawing.strokes)
     uv = np.concatenate(calls)
     assert uv[:, 0].min() >= r1[0] - 1e-12 * (r1[1] - r1[0])
     assert uv[:, 1].max() <= r2[1] + 1e-12 * (r2[1] - r2[0])

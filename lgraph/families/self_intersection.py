@@ -142,7 +142,7 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
         # iterates past an edge that is not glued are evaluated on the edge
         # (the caller drops the rows that end outside)
         a = d.clip(a0[act] + s[act, None] * e[act])
-        bb = b[act]
+        bb = d.clip(b[act])
         g = surface.points(a) - surface.points(bb)
         xa1, xa2 = surface.derivatives(a[:, 0], a[:, 1])
         xb1, xb2 = surface.derivatives(bb[:, 0], bb[:, 1])
@@ -155,7 +155,7 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
             if good.any():
                 step[good] = np.linalg.solve(J[good], -g[good][:, :, None])[:, :, 0]
         s[act] += step[:, 0]
-        b[act] = d.clip(b[act] + step[:, 1:])
+        b[act] += step[:, 1:]  # the caller drops partners that end outside
         ok[act] &= good
         # rows that wander far from their edge and patch are lost causes
         near = (s[act] > -4) & (s[act] < 5)
@@ -164,7 +164,7 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
         act = act[good & near & moving]
     a = d.clip(a0 + s[:, None] * e)
     res = np.full(m, np.inf)
-    res[ok] = np.linalg.norm(surface.points(a[ok]) - surface.points(b[ok]), axis=1)
+    res[ok] = np.linalg.norm(surface.points(a[ok]) - surface.points(d.clip(b[ok])), axis=1)
     ok &= np.isfinite(res) & (res <= ACCEPT_RTOL * size)
     return s, b, ok
 
@@ -325,13 +325,19 @@ def _trace(points: dict, surface: Surface) -> list[tuple[np.ndarray, bool]]:
     return out
 
 
-def _near(a: np.ndarray, other: np.ndarray, h: np.ndarray) -> np.ndarray:
-    """For each point of ``a``: whether a point of ``other`` is within about a cell."""
-    dist = np.abs((a[:, None, :] - other[None, :, :]) / h).max(axis=2).min(axis=1)
+def _near(a: np.ndarray, other: np.ndarray, h: np.ndarray, d: Any = None) -> np.ndarray:
+    """For each point of ``a``: whether a point of ``other`` is within about a
+    cell (across the glued seams of domain ``d``, if given)."""
+    q = other[None, :, :]
+    if d is not None and any(d.glued):
+        q = d.nearest_image(a[:, None, :], q)
+    dist = np.abs((a[:, None, :] - q) / h).max(axis=2).min(axis=1)
     return dist <= 1.5
 
 
-def _one_preimage(lines: list, pts: dict, h: np.ndarray) -> list[tuple[np.ndarray, bool]]:
+def _one_preimage(
+    lines: list, pts: dict, h: np.ndarray, d: Any = None
+) -> list[tuple[np.ndarray, bool]]:
     """Of the two preimages of each curve, one: ``(index order, closed)`` pieces.
 
     A traced polyline whose partners lie on another polyline already taken is
@@ -345,10 +351,10 @@ def _one_preimage(lines: list, pts: dict, h: np.ndarray) -> list[tuple[np.ndarra
     out: list[tuple[np.ndarray, bool]] = []
     for idx, closed in sorted(lines, key=lambda line: -len(line[0])):
         a, b = a_all[idx], b_all[idx]
-        if any(_near(b, o, h).mean() > 0.5 or _near(a, o, h).all() for o in taken):
+        if any(_near(b, o, h, d).mean() > 0.5 or _near(a, o, h, d).all() for o in taken):
             continue
         taken.append(a)
-        if _near(b, a, h).mean() <= 0.5:
+        if _near(b, a, h, d).mean() <= 0.5:
             out.append((idx, closed))
             continue
         first = a @ key < b @ key
@@ -447,7 +453,7 @@ class SelfIntersection(Family):
         h = np.array([d.span(0), d.span(1)]) / pts["n"]
         branches = [
             _Branch(surface, a_all[i], b_all[i], closed)
-            for i, closed in _one_preimage(lines, pts, h)
+            for i, closed in _one_preimage(lines, pts, h, d)
         ]
         branches = [br for br in branches if br.length > 0 and _extent(surface, br) > MIN_EXTENT]
         if not branches:

@@ -242,7 +242,7 @@ class ParametricSurface(Surface):
             b = np.broadcast_to(u2, bad.shape).ravel()[i]
             raise ValueError(
                 f"ParametricSurface: {name} returned NaN or inf at {len(i)} of {bad.size} "
-                f"parameter pairs, first at (u1, u2) = ({a[0]!r}, {b[0]!r}) "
+                f"parameter pairs, first at (u1, u2) = ({float(a[0])!r}, {float(b[0])!r}) "
                 f"(u1_range {self.u1_range}, u2_range {self.u2_range}): the function must be "
                 "finite on the whole closed parameter rectangle; shrink the ranges to avoid "
                 "singular edges"
