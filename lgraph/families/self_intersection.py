@@ -142,7 +142,7 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
         # iterates past an edge that is not glued are evaluated on the edge
         # (the caller drops the rows that end outside)
         a = d.clip(a0[act] + s[act, None] * e[act])
-        bb = d.clip(b[act])
+        bb = b[act]
         g = surface.points(a) - surface.points(bb)
         xa1, xa2 = surface.derivatives(a[:, 0], a[:, 1])
         xb1, xb2 = surface.derivatives(bb[:, 0], bb[:, 1])
@@ -155,7 +155,7 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
             if good.any():
                 step[good] = np.linalg.solve(J[good], -g[good][:, :, None])[:, :, 0]
         s[act] += step[:, 0]
-        b[act] += step[:, 1:]  # the caller drops partners that end outside
+        b[act] = d.clip(b[act] + step[:, 1:])
         ok[act] &= good
         # rows that wander far from their edge and patch are lost causes
         near = (s[act] > -4) & (s[act] < 5)
@@ -164,7 +164,7 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
         act = act[good & near & moving]
     a = d.clip(a0 + s[:, None] * e)
     res = np.full(m, np.inf)
-    res[ok] = np.linalg.norm(surface.points(a[ok]) - surface.points(d.clip(b[ok])), axis=1)
+    res[ok] = np.linalg.norm(surface.points(a[ok]) - surface.points(b[ok]), axis=1)
     ok &= np.isfinite(res) & (res <= ACCEPT_RTOL * size)
     return s, b, ok
 
