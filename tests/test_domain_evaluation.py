@@ -145,11 +145,20 @@ def test_dini_lines_of_curvature_end_on_the_edge():
     assert curv
     uv = np.concatenate([st.uv for st in curv])
     assert uv[:, 1].min() >= r2[0] - 1e-12 and uv[:, 1].max() <= r2[1] + 1e-12
-    # lines of curvature of Dini's surface are the parameter lines: v = const
-    # lines keep their v, u = const lines end on the edges v = 0.3 and v = 1.4
+    # the lines that leave the patch end exactly on its edges v = 0.3, v = 1.4
     ends = np.concatenate([st.uv[[0, -1], 1] for st in curv])
     on_edge = np.minimum(np.abs(ends - r2[0]), np.abs(ends - r2[1])) < 1e-9
     assert on_edge.sum() >= 6
+    # and they are lines of curvature: chords along principal directions
+    # (Dini's surface has K = -1, no umbilics), up to the chords' own bend
+    for st in curv:
+        t = np.diff(st.xyz, axis=0)
+        t /= np.linalg.norm(t, axis=1, keepdims=True)
+        mid = 0.5 * (st.uv[1:] + st.uv[:-1])
+        e1, e2 = s.principal_directions(mid[:, 0], mid[:, 1])
+        off = np.minimum(np.linalg.norm(np.cross(t, e1), axis=1),
+                         np.linalg.norm(np.cross(t, e2), axis=1))  # fmt: skip
+        assert off.max() < 2e-2
 
 
 def test_one_sided_differences_at_the_edges():
