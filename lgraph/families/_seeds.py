@@ -39,7 +39,8 @@ def _stable(surface: Any, field: Any, seeds: np.ndarray, dirs: np.ndarray) -> np
     step = 1e-3 * np.array([d.span(0), d.span(1)])
     offsets = np.array([[1, 0], [-1, 0], [0, 1], [0, -1]]) * step
     around = (seeds[None] + offsets[:, None]).reshape(-1, 2)
-    D, strength, G = field(surface, d.wrap(np.concatenate([seeds, around]), clip=False))
+    # neighbours past an edge that is not glued are taken on the edge
+    D, strength, G = field(surface, d.wrap(np.concatenate([seeds, around]), clip=True))
     ref = np.tile(dirs, (5, 1))
     Gr = np.stack([G[:, 0] * ref[:, 0] + G[:, 1] * ref[:, 1],
                    G[:, 1] * ref[:, 0] + G[:, 2] * ref[:, 1]], axis=1)  # fmt: skip
@@ -65,7 +66,7 @@ def _spread(lines: FieldLines, k: int, n: int) -> tuple[np.ndarray, np.ndarray]:
 def _crossing(field: Any, surface: Any, uv: np.ndarray, tangent: np.ndarray) -> np.ndarray:
     """The field's branch at ``uv`` most transversal to ``tangent`` (both in
     the parameter plane): the lines that cross a transversal line."""
-    D, _, G = field(surface, surface.domain.wrap(uv, clip=False))
+    D, _, G = field(surface, surface.domain.wrap(uv, clip=True))
     Gt = np.stack([G[:, 0] * tangent[:, 0] + G[:, 1] * tangent[:, 1],
                    G[:, 1] * tangent[:, 0] + G[:, 2] * tangent[:, 1]], axis=1)  # fmt: skip
     c = np.abs(np.einsum("ibj,ij->ib", D, Gt))

@@ -284,10 +284,13 @@ def trace(
     def at(uv: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The field at cover points: directions and metric mapped from the
         rectangle (a twist reflects a coordinate)."""
+        # trial stages past an edge that is not glued see the field of the
+        # nearest edge point (the surface is never evaluated outside; the step
+        # is then cut to end on the edge)
         if not twisted:
-            return field(surface, d.wrap(uv, clip=False))
+            return field(surface, d.wrap(uv, clip=True))
         base, _, sign = d.cells(uv)
-        D, strength, G = field(surface, base)
+        D, strength, G = field(surface, d.clip(base))
         G = G * np.stack([np.ones(len(G)), sign[:, 0] * sign[:, 1], np.ones(len(G))], axis=1)
         return D * sign[:, None, :], strength, G
 

@@ -36,7 +36,9 @@ def _geodesic_rhs(surface: Any) -> Any:
     twisted = any(d.twisted)
 
     def rhs(_t: float, y: np.ndarray) -> np.ndarray:
-        u1, u2, a, b = y
+        # trial stages past an edge that is not glued: the nearest edge point
+        # (the event `leave` ends the geodesic on the edge)
+        (u1, u2), (a, b) = d.clip(y[:2]), y[2:]
         u1a, u2a = np.array([u1]), np.array([u2])
         sign = np.ones(2)
         if twisted:  # the cover point's derivatives, from the rectangle's point

@@ -175,6 +175,8 @@ def intersection_curves(a: Any, b: Any, grid: int = 80, step: float | None = Non
         )
         keep = np.concatenate([[True], np.diff(t) > 1e-9 * h])
         zz, t = zz[keep], t[keep]
+        if closed and len(t) < 4:  # a loop of a few steps: a point contact (at a pole)
+            continue
         if closed:
             drift = zz[-1] - zz[0]
             from scipy.interpolate import CubicSpline

@@ -91,10 +91,15 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
     low = np.flatnonzero(((r == minimum_filter(r, size=3, mode=mode)) & (r < 0.5)).ravel())
     u = G[low[np.argsort(r.ravel()[low])][:64]]
     h = 1e-6 * span
-    for _ in range(12):  # Gauss-Newton on the three residuals
+    hi = lo + span
+    for _ in range(12):  # Gauss-Newton on the three residuals (iterates kept in the rectangle)
+        u = d.clip(u)
         f = _umbilic_residual(surface, d.wrap(u, clip=False), kappa)
-        J = np.stack([(_umbilic_residual(surface, d.wrap(u + e, clip=False), kappa) - f) / e.sum()
-                      for e in (np.array([h[0], 0.0]), np.array([0.0, h[1]]))], axis=2)  # fmt: skip
+        # forward differences, backward at the upper edges that are not glued
+        back = (u + h > hi) & ~np.array(d.glued)
+        e = np.where(back, -h, h)
+        J = np.stack([(_umbilic_residual(surface, d.wrap(u + e * ax, clip=False), kappa) - f)
+                      / e[:, i : i + 1] for i, ax in enumerate(np.eye(2))], axis=2)  # fmt: skip
         M = np.einsum("kia,kib->kab", J, J)  # normal equations, solved by hand (2 x 2)
         b = -np.einsum("kia,ki->ka", J, f)
         det = M[:, 0, 0] * M[:, 1, 1] - M[:, 0, 1] * M[:, 1, 0]
@@ -103,8 +108,8 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
                               M[:, 0, 0] * b[:, 1] - M[:, 1, 0] * b[:, 0]], axis=1)  # fmt: skip
             step = adj_b / det[:, None]
         u = u + np.clip(np.nan_to_num(step), -0.1 * span, 0.1 * span)
-    f = np.linalg.norm(_umbilic_residual(surface, d.wrap(u, clip=False), kappa), axis=1)
-    u = d.wrap(u, clip=False)
+    u = d.wrap(d.clip(u), clip=False)
+    f = np.linalg.norm(_umbilic_residual(surface, u, kappa), axis=1)
     inside = np.all((u >= lo) & (u <= lo + span), axis=1)
     u = u[(f < 1e-9) & inside]
     keep: list[np.ndarray] = []

@@ -130,6 +130,7 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
     (rows leaving the neighbourhood of their edge and patch are dropped).
     Returns ``(s, b, ok)``."""
     m = len(a0)
+    d = surface.domain
     s = np.full(m, 0.5)
     b = bc.copy()
     e = a1 - a0
@@ -138,7 +139,9 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
     for _ in range(EDGE_NEWTON_STEPS):
         if not len(act):
             break
-        a = a0[act] + s[act, None] * e[act]
+        # iterates past an edge that is not glued are evaluated on the edge
+        # (the caller drops the rows that end outside)
+        a = d.clip(a0[act] + s[act, None] * e[act])
         bb = b[act]
         g = surface.points(a) - surface.points(bb)
         xa1, xa2 = surface.derivatives(a[:, 0], a[:, 1])
@@ -152,14 +155,14 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
             if good.any():
                 step[good] = np.linalg.solve(J[good], -g[good][:, :, None])[:, :, 0]
         s[act] += step[:, 0]
-        b[act] += step[:, 1:]
+        b[act] = d.clip(b[act] + step[:, 1:])
         ok[act] &= good
         # rows that wander far from their edge and patch are lost causes
         near = (s[act] > -4) & (s[act] < 5)
         ok[act] &= near
         moving = np.abs(step).max(axis=1) > 1e-15 * (1 + np.abs(s[act]))
         act = act[good & near & moving]
-    a = a0 + s[:, None] * e
+    a = d.clip(a0 + s[:, None] * e)
     res = np.full(m, np.inf)
     res[ok] = np.linalg.norm(surface.points(a[ok]) - surface.points(b[ok]), axis=1)
     ok &= np.isfinite(res) & (res <= ACCEPT_RTOL * size)
@@ -322,13 +325,19 @@ def _trace(points: dict, surface: Surface) -> list[tuple[np.ndarray, bool]]:
     return out
 
 
-def _near(a: np.ndarray, other: np.ndarray, h: np.ndarray) -> np.ndarray:
-    """For each point of ``a``: whether a point of ``other`` is within about a cell."""
-    dist = np.abs((a[:, None, :] - other[None, :, :]) / h).max(axis=2).min(axis=1)
+def _near(a: np.ndarray, other: np.ndarray, h: np.ndarray, d: Any = None) -> np.ndarray:
+    """For each point of ``a``: whether a point of ``other`` is within about a
+    cell (across the glued seams of domain ``d``, if given)."""
+    q = other[None, :, :]
+    if d is not None and any(d.glued):
+        q = d.nearest_image(a[:, None, :], q)
+    dist = np.abs((a[:, None, :] - q) / h).max(axis=2).min(axis=1)
     return dist <= 1.5
 
 
-def _one_preimage(lines: list, pts: dict, h: np.ndarray) -> list[tuple[np.ndarray, bool]]:
+def _one_preimage(
+    lines: list, pts: dict, h: np.ndarray, d: Any = None
+) -> list[tuple[np.ndarray, bool]]:
     """Of the two preimages of each curve, one: ``(index order, closed)`` pieces.
 
     A traced polyline whose partners lie on another polyline already taken is
@@ -342,10 +351,10 @@ def _one_preimage(lines: list, pts: dict, h: np.ndarray) -> list[tuple[np.ndarra
     out: list[tuple[np.ndarray, bool]] = []
     for idx, closed in sorted(lines, key=lambda line: -len(line[0])):
         a, b = a_all[idx], b_all[idx]
-        if any(_near(b, o, h).mean() > 0.5 or _near(a, o, h).all() for o in taken):
+        if any(_near(b, o, h, d).mean() > 0.5 or _near(a, o, h, d).all() for o in taken):
             continue
         taken.append(a)
-        if _near(b, a, h).mean() <= 0.5:
+        if _near(b, a, h, d).mean() <= 0.5:
             out.append((idx, closed))
             continue
         first = a @ key < b @ key
@@ -357,7 +366,10 @@ def _one_preimage(lines: list, pts: dict, h: np.ndarray) -> list[tuple[np.ndarra
 
 
 def _project(surface: Surface, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Minimal-norm Gauss-Newton steps onto ``x(a) = x(b)`` (4 unknowns, 3 equations)."""
+    """Minimal-norm Gauss-Newton steps onto ``x(a) = x(b)`` (4 unknowns, 3
+    equations), the iterates kept in the rectangle."""
+    d = surface.domain
+    a, b = d.clip(a), d.clip(b)
     for _ in range(PROJECT_STEPS):
         g = surface.points(a) - surface.points(b)
         xa1, xa2 = surface.derivatives(a[:, 0], a[:, 1])
@@ -370,8 +382,8 @@ def _project(surface: Surface, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray
             y = np.linalg.pinv(JJ) @ np.where(np.isfinite(g), -g, 0.0)[:, :, None]
         step = (np.swapaxes(J, 1, 2) @ y)[:, :, 0]
         step = np.where(np.isfinite(step), step, 0.0)
-        a = a + step[:, :2]
-        b = b + step[:, 2:]
+        a = d.clip(a + step[:, :2])
+        b = d.clip(b + step[:, 2:])
     return a, b
 
 
@@ -441,7 +453,7 @@ class SelfIntersection(Family):
         h = np.array([d.span(0), d.span(1)]) / pts["n"]
         branches = [
             _Branch(surface, a_all[i], b_all[i], closed)
-            for i, closed in _one_preimage(lines, pts, h)
+            for i, closed in _one_preimage(lines, pts, h, d)
         ]
         branches = [br for br in branches if br.length > 0 and _extent(surface, br) > MIN_EXTENT]
         if not branches:

@@ -30,6 +30,39 @@ __all__ = ["Domain", "Surface", "OFF", "ON", "CONTOUR"]
 _OFF = (-2.0, -1.0, 1.0, 2.0)
 _W1 = (1 / 12, -2 / 3, 2 / 3, -1 / 12)
 _W2 = (-1 / 12, 4 / 3, 4 / 3, -1 / 12)
+#: the five nodes -2..2 of a stencil shifted by 0, +-1 or +-2 steps (rows:
+#: shift -2..2), so that near an edge of the patch every node lies inside it
+_NODES = np.arange(-2.0, 3.0)[None, :] + np.arange(-2.0, 3.0)[:, None]
+
+
+def _shifted_weights(order: int) -> np.ndarray:
+    """Weights ``(5, 5)`` of the derivative of ``order`` at 0 from values at
+    the nodes ``_NODES[shift + 2]`` (exact for quartics); the centred row is
+    the classical one (its centre weight 0 for the first derivative)."""
+    w = np.empty((5, 5))
+    rhs = np.zeros(5)
+    rhs[order] = float(order)  # k! for k = 1, 2
+    for row, t in enumerate(_NODES):
+        w[row] = np.linalg.solve(np.vander(t, 5, increasing=True).T, rhs)
+    w[2] = (_W1[0], _W1[1], 0.0, _W1[2], _W1[3]) if order == 1 else (
+        _W2[0], _W2[1], -2.5, _W2[2], _W2[3])  # fmt: skip
+    return w
+
+
+_SW1, _SW2 = _shifted_weights(1), _shifted_weights(2)
+
+
+def _shifts(domain: Domain, i: int, u: np.ndarray, h: float) -> np.ndarray:
+    """Integer shifts (-2..2) of the stencils at ``u`` along ``u_i`` (step
+    ``h``) that keep their nodes inside the rectangle: 0 away from the edges
+    and for glued parameters (their values past a seam are mapped back)."""
+    if domain.glued[i]:
+        return np.zeros(u.shape, int)
+    lo, hi = domain.range(i)
+    with np.errstate(invalid="ignore"):
+        up = np.clip(np.ceil(2.0 - (u - lo) / h - 1e-9), 0, 2)
+        down = np.clip(np.ceil(2.0 - (hi - u) / h - 1e-9), 0, 2)
+    return np.nan_to_num(up - down).astype(int)
 
 
 class Surface:
@@ -131,43 +164,64 @@ class Surface:
     def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
         """First partial derivatives ``x1 = dx/du1`` and ``x2 = dx/du2``.
 
-        Default: fourth-order central differences (all stencil points in one
-        call of :meth:`!point`).
+        Default: fourth-order finite differences (all stencil points in one
+        call of :meth:`!point`), central away from the edges of the patch and
+        shifted inward near an edge that is not glued, so that ``point`` is
+        only evaluated inside the rectangle.
+
+        >>> import lgraph as lg
+        >>> s = lg.ParametricSurface(lambda u, v: np.stack(np.broadcast_arrays(u, v, u**3), -1),
+        ...                          (0, 1), (0, 1))
+        >>> bool(abs(s.derivatives(1.0, 0.0)[0][2] - 3.0) < 1e-9)
+        True
         """
         u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
-        h1 = FD_STEP_1 * self.domain.span(0)
-        h2 = FD_STEP_1 * self.domain.span(1)
-        off = np.array(_OFF).reshape((4,) + (1,) * u1.ndim)
-        zero = np.zeros_like(off)
-        p = self._stencil(
-            u1, u2, np.concatenate([off * h1, zero]), np.concatenate([zero, off * h2])
-        )
-        w = np.array(_W1)
-        return np.tensordot(w, p[:4], axes=1) / h1, np.tensordot(w, p[4:], axes=1) / h2
+        d = self.domain
+        h1 = FD_STEP_1 * d.span(0)
+        h2 = FD_STEP_1 * d.span(1)
+        k1, k2 = _shifts(d, 0, u1, h1), _shifts(d, 1, u2, h2)
+        t1 = np.moveaxis(_NODES[k1 + 2], -1, 0)  # (5, ...)
+        t2 = np.moveaxis(_NODES[k2 + 2], -1, 0)
+        zero = np.zeros_like(t1)
+        p = self._stencil(u1, u2, np.concatenate([t1 * h1, zero]), np.concatenate([zero, t2 * h2]))
+        w1 = np.moveaxis(_SW1[k1 + 2], -1, 0)[..., None]
+        w2 = np.moveaxis(_SW1[k2 + 2], -1, 0)[..., None]
+        return (w1 * p[:5]).sum(axis=0) / h1, (w2 * p[5:]).sum(axis=0) / h2
 
     derivatives.finite_differences = True  # type: ignore[attr-defined]
 
     def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Second partial derivatives ``x11, x12, x22``.
 
-        Default: fourth-order central differences of ``point`` with steps
-        ``FD_STEP_2`` of the spans (rounding and truncation errors both near
-        ``1e-10``: smooth enough for ODE solvers), all 25 stencil points in
-        one call of :meth:`!point`.
+        Default: finite differences of ``point`` on a 5 x 5 grid of steps
+        ``FD_STEP_2`` of the spans (central away from the edges, rounding and
+        truncation errors both near ``1e-10``: smooth enough for ODE solvers;
+        shifted inward near an edge that is not glued, like
+        :meth:`derivatives`), all 25 points in one call of :meth:`!point`.
         """
         u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
-        h1 = FD_STEP_2 * self.domain.span(0)
-        h2 = FD_STEP_2 * self.domain.span(1)
-        o = np.array(_OFF)
-        # rows: centre, 4 along u1, 4 along u2, the 16 of the mixed stencil
-        d1 = np.concatenate([[0.0], o, np.zeros(4), np.repeat(o, 4)]) * h1
-        d2 = np.concatenate([[0.0], np.zeros(4), o, np.tile(o, 4)]) * h2
-        shape = (25,) + (1,) * u1.ndim
-        p = self._stencil(u1, u2, d1.reshape(shape), d2.reshape(shape))
-        w2, w1 = np.array(_W2), np.array(_W1)
-        x11 = (np.tensordot(w2, p[1:5], axes=1) - 2.5 * p[0]) / (h1 * h1)
-        x22 = (np.tensordot(w2, p[5:9], axes=1) - 2.5 * p[0]) / (h2 * h2)
-        x12 = np.tensordot(np.outer(w1, w1).ravel(), p[9:], axes=1) / (h1 * h2)
+        d = self.domain
+        h1 = FD_STEP_2 * d.span(0)
+        h2 = FD_STEP_2 * d.span(1)
+        k1, k2 = _shifts(d, 0, u1, h1), _shifts(d, 1, u2, h2)
+        t1 = np.moveaxis(_NODES[k1 + 2], -1, 0)  # (5, ...)
+        t2 = np.moveaxis(_NODES[k2 + 2], -1, 0)
+        # the grid (i, j) -> row 5 i + j
+        d1 = np.repeat(t1, 5, axis=0) * h1
+        d2 = np.tile(t2, (5,) + (1,) * u1.ndim) * h2
+        p = self._stencil(u1, u2, d1, d2).reshape((5, 5) + u1.shape + (3,))
+        # the grid's rows through the point itself (node 0 is at index 2 - shift)
+        c2 = (2 - k2)[None, None, ..., None]
+        c1 = (2 - k1)[None, None, ..., None]
+        along1 = np.take_along_axis(p, c2, axis=1)[:, 0]
+        along2 = np.take_along_axis(p, c1, axis=0)[0]
+        a1 = np.moveaxis(_SW2[k1 + 2], -1, 0)[..., None]
+        a2 = np.moveaxis(_SW2[k2 + 2], -1, 0)[..., None]
+        x11 = (a1 * along1).sum(axis=0) / (h1 * h1)
+        x22 = (a2 * along2).sum(axis=0) / (h2 * h2)
+        b1 = np.moveaxis(_SW1[k1 + 2], -1, 0)[:, None, ..., None]
+        b2 = np.moveaxis(_SW1[k2 + 2], -1, 0)[None, :, ..., None]
+        x12 = (b1 * b2 * p).sum(axis=(0, 1)) / (h1 * h2)
         return x11, x12, x22
 
     def _stencil(

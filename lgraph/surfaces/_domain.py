@@ -299,6 +299,20 @@ class Domain:
                     uv[..., i] = np.clip(uv[..., i], *self.range(i))
         return uv
 
+    def clip(self, uv: Any) -> np.ndarray:
+        """A copy of parameters ``(..., 2)`` with those that are not glued
+        clipped into the rectangle (glued ones are left in the cover): where
+        a search that strays past an edge evaluates the surface instead.
+
+        >>> Domain((0, 1), (0, 2), periodic=(False, True)).clip([[1.5, 2.5]]).tolist()
+        [[1.0, 2.5]]
+        """
+        uv = np.array(uv, dtype=float, copy=True)
+        for i in (0, 1):
+            if not self.glued[i]:
+                uv[..., i] = np.clip(uv[..., i], *self.range(i))
+        return uv
+
     def ends(self, i: int) -> np.ndarray:
         """The values of ``u_i`` at which the patch has a boundary curve (both
         ends, unless ``u_i`` is glued; pole ends excluded)."""

@@ -152,8 +152,7 @@ def project_to_zero(
             f, g1, g2 = fun_grad(p[:, 0], p[:, 1])
         else:
             f = fun(p[:, 0], p[:, 1])
-            g1 = (fun(p[:, 0] + h[0], p[:, 1]) - fun(p[:, 0] - h[0], p[:, 1])) / (2 * h[0])
-            g2 = (fun(p[:, 0], p[:, 1] + h[1]) - fun(p[:, 0], p[:, 1] - h[1])) / (2 * h[1])
+            g1, g2 = (_difference(d, fun, p, i, h[i]) for i in (0, 1))
         # minimal step in coordinates scaled by the spans
         g1s, g2s = g1 * scale[0], g2 * scale[1]
         gg = g1s * g1s + g2s * g2s
@@ -162,8 +161,20 @@ def project_to_zero(
             step = np.where(ok, f / gg, 0.0)
         uv[active, 0] -= step * g1s * scale[0]
         uv[active, 1] -= step * g2s * scale[1]
+        uv[active] = d.clip(uv[active])  # Newton iterates stay in the rectangle
         active = active[ok & (np.abs(f) > ftol)]
     return uv
+
+
+def _difference(d: Any, fun: Any, p: np.ndarray, i: int, h: float) -> np.ndarray:
+    """Central difference of ``fun`` along ``u_i`` at ``p (n, 2)``, one-sided
+    where a step would leave the rectangle (not across glued edges)."""
+    a, b = p.copy(), p.copy()
+    a[:, i] -= h
+    b[:, i] += h
+    a, b = d.clip(a), d.clip(b)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return (fun(b[:, 0], b[:, 1]) - fun(a[:, 0], a[:, 1])) / (b[:, i] - a[:, i])
 
 
 def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) -> list[CurveBatch]:

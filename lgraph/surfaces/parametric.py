@@ -212,23 +212,67 @@ class ParametricSurface(Surface):
     def domain(self) -> Domain:
         return Domain(self.u1_range, self.u2_range, periodic=self.periodic, poles=self.poles)
 
-    def point(self, u1: Any, u2: Any) -> np.ndarray:
+    def _base(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """The parameters mapped into the rectangle across glued edges
+        (:meth:`Domain.cells`), and the signs of that map per parameter (None
+        when nothing is glued): the user's functions are only called there."""
         u1, u2 = _uv(u1, u2)
-        return np.asarray(self.func(u1, u2), dtype=float)
+        per = self.periodic
+        past = False  # a glued parameter past its range (inner loops: checked cheaply)
+        for g, u, (lo, hi) in ((per[0], u1, self.u1_range), (per[1], u2, self.u2_range)):
+            if g is not False and u.size:
+                past = past or bool((u < lo).any()) or bool((u > hi).any())
+        if not past:
+            return u1, u2, None
+        base, _, sign = self.domain.cells(np.stack([u1, u2], axis=-1))
+        return base[..., 0], base[..., 1], sign
+
+    def _checked(self, name: str, value: Any, u1: np.ndarray, u2: np.ndarray) -> np.ndarray:
+        """``value`` as floats; NaN or inf (where the user's function failed
+        inside the domain) is an error naming the surface and the parameters."""
+        out = np.asarray(value, dtype=float)
+        if not np.isfinite(out).all():
+            # NaN parameters (a caller's failed search) may give NaN points
+            bad = ~np.isfinite(out).reshape(np.shape(u1) + (-1,)).all(axis=-1)
+            bad &= np.isfinite(u1) & np.isfinite(u2)
+            i = np.flatnonzero(bad)
+            if not len(i):
+                return out
+            a = np.broadcast_to(u1, bad.shape).ravel()[i]
+            b = np.broadcast_to(u2, bad.shape).ravel()[i]
+            raise ValueError(
+                f"ParametricSurface: {name} returned NaN or inf at {len(i)} of {bad.size} "
+                f"parameter pairs, first at (u1, u2) = ({float(a[0])!r}, {float(b[0])!r}) "
+                f"(u1_range {self.u1_range}, u2_range {self.u2_range}): the function must be "
+                "finite on the whole closed parameter rectangle; shrink the ranges to avoid "
+                "singular edges"
+            )
+        return out
+
+    def point(self, u1: Any, u2: Any) -> np.ndarray:
+        b1, b2, _ = self._base(u1, u2)
+        return self._checked("func", self.func(b1, b2), b1, b2)
 
     def derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray]:
         if self.derivatives_func is None:
             return super().derivatives(u1, u2)
-        u1, u2 = _uv(u1, u2)
-        x1, x2 = self.derivatives_func(u1, u2)
-        return np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
+        b1, b2, sign = self._base(u1, u2)
+        x1, x2 = self.derivatives_func(b1, b2)
+        x1 = self._checked("derivatives_func", x1, b1, b2)
+        x2 = self._checked("derivatives_func", x2, b1, b2)
+        if sign is not None:  # d/du_i of x(S u + t) is S_i x_i
+            x1, x2 = x1 * sign[..., 0:1], x2 * sign[..., 1:2]
+        return x1, x2
 
     def second_derivatives(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if self.second_derivatives_func is None:
             return super().second_derivatives(u1, u2)
-        u1, u2 = _uv(u1, u2)
-        x11, x12, x22 = self.second_derivatives_func(u1, u2)
-        return tuple(np.asarray(x, dtype=float) for x in (x11, x12, x22))  # type: ignore[return-value]
+        b1, b2, sign = self._base(u1, u2)
+        parts = self.second_derivatives_func(b1, b2)
+        x11, x12, x22 = (self._checked("second_derivatives_func", x, b1, b2) for x in parts)
+        if sign is not None:
+            x12 = x12 * (sign[..., 0:1] * sign[..., 1:2])
+        return x11, x12, x22
 
 
 #: largest length of a quartic surface: its equation's fourth powers must stay finite
