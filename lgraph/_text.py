@@ -369,7 +369,8 @@ def text_glyphs(text: str, size: float) -> TextGlyphs:
         prop = FontProperties(family="STIXGeneral", size=_TEXT_SCALE)
         parsed = MathTextParser("path").parse(text, dpi=72, prop=prop)
     glyphs = []
-    for font, fontsize, code, _, ox, oy in parsed.glyphs:
+    # (font, size, character code, [glyph index: matplotlib >= 3.11], x, y)
+    for font, fontsize, code, *_, ox, oy in parsed.glyphs:
         name = str(getattr(font, "fname", "")).lower()  # STIXGeneralBol, STIXGeneralItalic
         style = "bold" if "bol" in name else "italic" if "ital" in name else "roman"
         glyphs.append((float(ox) * k, float(oy) * k, chr(code), style, float(fontsize) * k))
