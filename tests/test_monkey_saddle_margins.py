@@ -171,6 +171,14 @@ def test_contour_projection_with_analytic_gradient_equals_the_central_difference
         idx = np.repeat(np.arange(len(batch.t0)), 100)
         t = np.concatenate([np.linspace(a, b, 100) for a, b in zip(batch.t0, batch.t1)])
         uv = batch.evaluate(idx, t)[1] + rng.normal(size=(len(t), 2)) * 1e-4 * span
+        # away from the patch's edges, where Newton's steps are cut back into
+        # the patch (tests/test_domain_evaluation.py checks the edges)
+        inner = np.ones(len(uv), bool)
+        for i in (0, 1):
+            if not d.glued[i]:
+                lo, hi = d.range(i)
+                inner &= np.minimum(uv[:, i] - lo, hi - uv[:, i]) > 1e-3 * span[i]
+        uv = uv[inner]
         f, g1, g2 = nc.view_cosine_gradient(surface, projector, uv[:, 0], uv[:, 1])
         np.testing.assert_allclose(f, nc.view_cosine(surface, projector, uv[:, 0], uv[:, 1]),
                                    rtol=0, atol=1e-15)  # fmt: skip
@@ -190,7 +198,7 @@ def test_contour_projection_with_analytic_gradient_equals_the_central_difference
         numeric = nc.project_to_zero(surface, fun, uv, 4, 1e-14)
         np.testing.assert_allclose(exact, numeric, rtol=0, atol=1e-13 * span.max())
         res = nc.view_cosine(surface, projector, *exact.T)
-        assert np.abs(res).max() < 1e-13
+        assert np.abs(res).max() < 1e-13 and len(uv) > 50
 
 
 def test_surfaces_with_numeric_second_derivatives_keep_central_differences() -> None:

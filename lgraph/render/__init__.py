@@ -20,7 +20,7 @@
    front of it, and where the count changes along a curve the change is
    located like a flip (:mod:`lgraph.render.depth`);
 7. runs of equal visibility and depth become strokes, hidden ones styled by
-   the ``hidden_style`` rule (:mod:`lgraph.render.strokes`);
+   the ``hidden_style`` rule (``lgraph.render.strokes``);
 8. labels and point marks are placed and hidden like the lines
    (:mod:`lgraph.render.marks`).
 """
