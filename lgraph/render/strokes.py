@@ -153,13 +153,3 @@ def _own_surface(surface: Any, node: Node) -> Any:
     if surface is None or own is None or surface is own:
         return surface
     return own if type(own) is type(surface) and bool(own == surface) else surface
-
-
-def _own_surface(surface: Any, node: Node) -> Any:
-    """The node's own surface object for a batch's ``surface``: a cached
-    batch is shared by equal surfaces of several nodes
-    (:mod:`lgraph.families.cache`), and holds the first of them."""
-    own = node.surface
-    if surface is None or own is None or surface is own:
-        return surface
-    return own if type(own) is type(surface) and bool(own == surface) else surface

@@ -47,35 +47,32 @@ def _gluing(value: Any, what: str) -> bool | str:
         raise ValueError(f"{what} must be False, True or 'twisted', got {value!r}") from None
 
 
-def _gluing_pair(value: Any, what: str = "periodic") -> tuple[Any, Any]:
-    """One gluing for both parameters or a pair ``(u1, u2)`` of them."""
-    if isinstance(value, (bool, np.bool_)) or (isinstance(value, str) and value == "twisted"):
-        g = _gluing(value, what)
+def _pair(value: Any, single: bool, one: Any, what: str, allowed: str) -> tuple[Any, Any]:
+    """``one(value)`` for both parameters (or ends) when ``single``, else the
+    pair ``(one(a), one(b))`` of ``value = (a, b)``; ``allowed`` for the error."""
+    if single:
+        g = one(value, what)
         return (g, g)
     try:
         if isinstance(value, str):  # "no" is not a pair ("n", "o")
             raise TypeError
         a, b = value
     except (TypeError, ValueError):
-        raise ValueError(
-            f"{what} must be False, True, 'twisted' or a pair (u1, u2) of them, got {value!r}"
-        ) from None
-    return (_gluing(a, f"{what}[0]"), _gluing(b, f"{what}[1]"))
+        raise ValueError(f"{what} must be {allowed}, got {value!r}") from None
+    return (one(a, f"{what}[0]"), one(b, f"{what}[1]"))
+
+
+def _gluing_pair(value: Any, what: str = "periodic") -> tuple[Any, Any]:
+    """One gluing for both parameters or a pair ``(u1, u2)`` of them."""
+    single = isinstance(value, (bool, np.bool_)) or (isinstance(value, str) and value == "twisted")
+    allowed = "False, True, 'twisted' or a pair (u1, u2) of them"
+    return _pair(value, single, _gluing, what, allowed)
 
 
 def _bool_pair(value: Any, what: str = "periodic", pair: str = "(u1, u2)") -> tuple[bool, bool]:
     """One flag for both parameters (or ends) or a pair of flags."""
-    if isinstance(value, (bool, np.bool_)):
-        return (bool(value), bool(value))
-    try:
-        if isinstance(value, str):  # "no" is not a pair ("n", "o")
-            raise TypeError
-        a, b = value
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"{what} must be a bool or a pair {pair} of bools, got {value!r}"
-        ) from None
-    return (_flag(a, f"{what}[0]"), _flag(b, f"{what}[1]"))
+    single = isinstance(value, (bool, np.bool_))
+    return _pair(value, single, _flag, what, f"a bool or a pair {pair} of bools")
 
 
 def _pole_pairs(value: Any, what: str = "poles") -> tuple[tuple[bool, bool], tuple[bool, bool]]:
