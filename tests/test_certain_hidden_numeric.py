@@ -43,7 +43,7 @@ SURFACES = {
 def _views(seed):
     rng = np.random.default_rng(seed)
     out = []
-    for _ in range(3):
+    for _ in range(2):
         az, el = rng.uniform(0, 360), rng.uniform(20, 80)
         out.append(lg.ParallelProjector.from_angles(az, el))
     return out
@@ -96,7 +96,7 @@ def test_no_hidden_piece_between_two_visible_samples(name, seed):
     """Enneper's patch passes through itself: drawn with its
     ``SelfIntersection``, that curve is part of the net."""
     escaped = _escaped(name, seed, self_intersection=name == "enneper")
-    assert escaped == [0, 0, 0], f"hidden points drawn visible, per view: {escaped}"
+    assert escaped == [0, 0], f"hidden points drawn visible, per view: {escaped}"
 
 
 def test_mutation_without_near_misses_the_helicoid_shows_hidden_pieces(monkeypatch):
