@@ -38,6 +38,9 @@ from lgraph.backends._common import page_runs
 from lgraph.bezier import page_curve_runs
 from lgraph.units import length_pt
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from page_curves import deviation  # noqa: E402  (the tests' independent measure)
+
 HERE = Path(__file__).resolve().parent
 A0 = "841mm"
 PRECISION = "0.01mm"
@@ -64,34 +67,6 @@ def _wavy_torus() -> tuple[lg.Scene, lg.Projector]:
     return scene, lg.ParallelProjector.from_angles(-50, 40)
 
 
-def _exact(stroke, t, scale, offset):
-    c = stroke.curve
-    tt = np.where(c.closed & (t > c.t1), t - (c.t1 - c.t0), t)
-    x, _ = c.batch.evaluate(np.full(len(tt), c.index), tt)
-    x = c.transform.apply(np.asarray(x, float).reshape(-1, 3))
-    return c.projector.project(x) * scale + offset
-
-
-def _flatten(ctrl, n=64):
-    p0, p1, p2, p3 = ctrl[:-1:3], ctrl[1::3], ctrl[2::3], ctrl[3::3]
-    f = np.linspace(0, 1, n)[None, :, None]
-    g = 1 - f
-    q = g**3 * p0[:, None] + 3 * g * g * f * p1[:, None] + 3 * g * f * f * p2[:, None]
-    return (q + f**3 * p3[:, None]).reshape(-1, 2)
-
-
-def _distance(points, poly):
-    a, b = poly[:-1], poly[1:]
-    d = b - a
-    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
-    out = np.empty(len(points))
-    for k in range(0, len(points), 256):
-        q = points[k : k + 256, None, :]
-        t = np.clip(np.einsum("kij,ij->ki", q - a, d) / dd, 0, 1)
-        out[k : k + 256] = np.hypot(*(a + t[..., None] * d - q).transpose(2, 0, 1)).min(axis=1)
-    return out
-
-
 def _deviation(sized: lg.Drawing, runs) -> float:
     """Largest distance (pt) between the written runs and the exact curves."""
     scale, offset, _, _ = sized._layout()
@@ -99,10 +74,7 @@ def _deviation(sized: lg.Drawing, runs) -> float:
     for pts, stroke, bezier in runs:
         if stroke.curve is None or stroke.family == "point":
             continue
-        t = stroke.curve.t
-        exact = _exact(stroke, np.linspace(t[0], t[-1], 3000), scale, offset)
-        drawn = _flatten(pts) if bezier else pts
-        worst = max(worst, _distance(exact, drawn).max(), _distance(drawn, exact).max())
+        worst = max(worst, deviation(pts, stroke, bezier, scale, offset))
     return worst
 
 

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from page_curves import deviation, flatten
 
 import lgraph as lg
 from lgraph.backends._common import page_runs
@@ -51,48 +52,14 @@ def sized(request) -> lg.Drawing:
     return d.sized(width=A0)
 
 
-def _exact(stroke: lg.Stroke, t: np.ndarray, scale: float, offset) -> np.ndarray:
-    """The stroke's exact curve on the page at parameters ``t`` (independent
-    of lgraph.bezier: the batch, the node's transform, the projector)."""
-    c = stroke.curve
-    tt = np.where(c.closed & (t > c.t1), t - (c.t1 - c.t0), t)
-    x, _ = c.batch.evaluate(np.full(len(tt), c.index), tt)
-    x = c.transform.apply(np.asarray(x, float).reshape(-1, 3))
-    return c.projector.project(x) * scale + offset
-
-
-def _flatten(ctrl: np.ndarray, n: int = 64) -> np.ndarray:
-    p0, p1, p2, p3 = ctrl[:-1:3], ctrl[1::3], ctrl[2::3], ctrl[3::3]
-    f = np.linspace(0, 1, n)[None, :, None]
-    g = 1 - f
-    q = g**3 * p0[:, None] + 3 * g * g * f * p1[:, None] + 3 * g * f * f * p2[:, None]
-    return (q + f**3 * p3[:, None]).reshape(-1, 2)
-
-
-def _distance(points: np.ndarray, poly: np.ndarray) -> np.ndarray:
-    """Distance of each point to the polyline (chunked brute force)."""
-    a, b = poly[:-1], poly[1:]
-    d = b - a
-    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
-    out = np.empty(len(points))
-    for k in range(0, len(points), 256):
-        q = points[k : k + 256, None, :]
-        t = np.clip(np.einsum("kij,ij->ki", q - a, d) / dd, 0, 1)
-        out[k : k + 256] = np.hypot(*(a + t[..., None] * d - q).transpose(2, 0, 1)).min(axis=1)
-    return out
-
-
 def test_bezier_deviation_from_the_exact_curve_at_a0(sized: lg.Drawing):
     scale, offset, _, _ = sized._layout()
     runs = [r for r in page_curve_runs(sized, PRECISION) if r[2]]
     assert len(runs) >= 10
     worst = 0.0
     for ctrl, stroke, _ in runs:
-        t = stroke.curve.t
-        exact = _exact(stroke, np.linspace(t[0], t[-1], 3000), scale, offset)
-        flat = _flatten(ctrl)
         # both ways: the true curve near the Bézier and the Bézier near the true curve
-        worst = max(worst, _distance(exact, flat).max(), _distance(flat, exact).max())
+        worst = max(worst, deviation(ctrl, stroke, True, scale, offset))
         # ends exact: the stroke's first and last samples (visibility transitions)
         assert np.allclose(ctrl[0], stroke.xy[0] * scale + offset, atol=1e-9, rtol=0)
         assert np.allclose(ctrl[-1], stroke.xy[-1] * scale + offset, atol=1e-9, rtol=0)
@@ -168,7 +135,7 @@ def test_halos_cut_the_curves_where_they_cross_the_edges(tmp_path: Path):
     d = scene.render(lg.ParallelProjector(direction=(0.3, -1, 0.4))).sized(width="6cm")
     (box,), _ = d.halo_regions()
     runs = [r for r in page_curve_runs(d, PRECISION) if r[2]]
-    flat = np.concatenate([_flatten(c) for c, _, _ in runs])
+    flat = np.concatenate([flatten(c) for c, _, _ in runs])
     x, y = flat[:, 0], flat[:, 1]
     e = 1e-6
     assert not ((x > box[0] + e) & (x < box[2] - e) & (y > box[1] + e) & (y < box[3] - e)).any()
