@@ -103,16 +103,14 @@ def _view_crossings(
     """Crossings of query chords ``qi`` with net chords ``ni`` (chord ``i``
     runs from sample ``i`` to ``i + 1``) of one view: the query chord of each
     crossing and its fraction along it."""
+    q0, q1, n0, n1 = (np.take(xy, i, axis=0) for i in (qi, qi + 1, ni, ni + 1))
     pq, pn = box_pairs(
-        np.minimum(xy[qi], xy[qi + 1]),
-        np.maximum(xy[qi], xy[qi + 1]),
-        np.minimum(xy[ni], xy[ni + 1]),
-        np.maximum(xy[ni], xy[ni + 1]),
+        np.minimum(q0, q1), np.maximum(q0, q1), np.minimum(n0, n1), np.maximum(n0, n1)
     )
     a, b = qi[pq], ni[pn]
     keep = cid[a] != cid[b]  # a curve does not cross itself into hiding
     a, b = a[keep], b[keep]
-    hit, frac = chord_crossings(xy[a], xy[a + 1], xy[b], xy[b + 1])
+    hit, frac = chord_crossings(*(np.take(xy, i, axis=0) for i in (a, a + 1, b, b + 1)))
     return a[hit], frac[hit]
 
 
@@ -323,7 +321,7 @@ def near_misses(
     chord = np.flatnonzero(s.cid[1:] == s.cid[:-1])
     chord = chord[(s.t[chord + 1] - s.t[chord]) > 0]
     xy = s.xy
-    length = np.abs(xy[chord + 1] - xy[chord]).max(axis=1)
+    length = np.abs(np.take(xy, chord + 1, axis=0) - np.take(xy, chord, axis=0)).max(axis=1)
     view = s.view[s.cid[chord]]
     chord, view = chord[length > 1e-6 * near[view]], view[length > 1e-6 * near[view]]
     net_chord = chord[net[s.cid[chord]]]
@@ -335,11 +333,12 @@ def near_misses(
         if not len(n_k):
             continue
         pad = float(near[k])
+        q0, q1, n0, n1 = (np.take(xy, i, axis=0) for i in (q_k, q_k + 1, n_k, n_k + 1))
         pq, pn = box_pairs(
-            np.minimum(xy[q_k], xy[q_k + 1]) - pad,
-            np.maximum(xy[q_k], xy[q_k + 1]) + pad,
-            np.minimum(xy[n_k], xy[n_k + 1]),
-            np.maximum(xy[n_k], xy[n_k + 1]),
+            np.minimum(q0, q1) - pad,
+            np.maximum(q0, q1) + pad,
+            np.minimum(n0, n1),
+            np.maximum(n0, n1),
         )
         a, b = q_k[pq], n_k[pn]
         # a curve beside its own surface's contour (a fold, a cusp of the
@@ -347,7 +346,7 @@ def near_misses(
         ca, cb = s.cid[a], s.cid[b]
         keep = (ca != cb) & (s.owner[ca] == s.owner[cb]) & (s.owner[ca] >= 0) & contour[cb]
         a, b = a[keep], b[keep]
-        d, f = _approach(xy[a], xy[a + 1], xy[b], xy[b + 1])
+        d, f = _approach(*(np.take(xy, i, axis=0) for i in (a, a + 1, b, b + 1)))
         # each polyline lies within its chords' sagitta of its curve: nearer
         # than both, the curves may cross; else they part (refined chords
         # have smaller sagittas, so this ends)
