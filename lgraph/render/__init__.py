@@ -85,7 +85,9 @@ def _classify(s: Samples, vis: Occlusion) -> None:
         return
     cause = np.empty(len(f), dtype=np.int64)
     owner, kind = s.owners(f)
-    s.hidden[f] = vis.hidden(s.xyz[f], s.xy[f], owner, kind, cause, view=s.view[s.cid[f]])
+    # np.take: rows gathered several times faster than by fancy indexing
+    xyz, xy = np.take(s.xyz, f, axis=0), np.take(s.xy, f, axis=0)
+    s.hidden[f] = vis.hidden(xyz, xy, owner, kind, cause, view=s.view[s.cid[f]])
     s.cause[f] = cause
     s.fresh[f] = False
 

@@ -103,16 +103,14 @@ def _view_crossings(
     """Crossings of query chords ``qi`` with net chords ``ni`` (chord ``i``
     runs from sample ``i`` to ``i + 1``) of one view: the query chord of each
     crossing and its fraction along it."""
+    q0, q1, n0, n1 = (np.take(xy, i, axis=0) for i in (qi, qi + 1, ni, ni + 1))
     pq, pn = box_pairs(
-        np.minimum(xy[qi], xy[qi + 1]),
-        np.maximum(xy[qi], xy[qi + 1]),
-        np.minimum(xy[ni], xy[ni + 1]),
-        np.maximum(xy[ni], xy[ni + 1]),
+        np.minimum(q0, q1), np.maximum(q0, q1), np.minimum(n0, n1), np.maximum(n0, n1)
     )
     a, b = qi[pq], ni[pn]
     keep = cid[a] != cid[b]  # a curve does not cross itself into hiding
     a, b = a[keep], b[keep]
-    hit, frac = chord_crossings(xy[a], xy[a + 1], xy[b], xy[b + 1])
+    hit, frac = chord_crossings(*(np.take(xy, i, axis=0) for i in (a, a + 1, b, b + 1)))
     return a[hit], frac[hit]
 
 
@@ -122,8 +120,10 @@ def _conic_roots(
     """Where chords ``qi`` cross the outline conic ``C`` (one ``(3, 3)``, or
     one a chord): the chord of each crossing and its fraction along it, the
     roots in (0, 1) of the quadratic ``f(s) = y(s) C y(s)`` along the chord."""
-    x0, y0 = xy[qi, 0] - origin[0], xy[qi, 1] - origin[1]  # the conics' coordinates
-    rx, ry = xy[qi + 1, 0] - xy[qi, 0], xy[qi + 1, 1] - xy[qi, 1]
+    xs, ys = xy[:, 0], xy[:, 1]  # columns first: gathered faster
+    xa, ya = xs[qi], ys[qi]
+    x0, y0 = xa - origin[0], ya - origin[1]  # the conics' coordinates
+    rx, ry = xs[qi + 1] - xa, ys[qi + 1] - ya
     if C.ndim == 2:
         C = C[None]
     c00, c01, c02 = C[:, 0, 0], C[:, 0, 1], C[:, 0, 2]
@@ -160,17 +160,19 @@ def _outline_crossings(
     owner = s.owner[cid]
     qo = np.where((owner >= 0) & (owner < len(qn)), qn[np.clip(owner, 0, len(qn) - 1)], -1)
     qo[s.kind[cid] == 0] = -1  # OFF: not on its ellipsoid
-    ok = np.isfinite(box[:, 0])
-    x0, y0 = (
-        np.minimum(s.xy[chord, 0], s.xy[chord + 1, 0]),
-        np.minimum(s.xy[chord, 1], s.xy[chord + 1, 1]),
-    )
-    x1, y1 = (
-        np.maximum(s.xy[chord, 0], s.xy[chord + 1, 0]),
-        np.maximum(s.xy[chord, 1], s.xy[chord + 1, 1]),
-    )
-    found_q, found_f = [], []
     free = np.flatnonzero(qo < 0)
+    # the pairs of ellipsoids whose outline boxes meet (twins aside)
+    meet = (box[:, None, 0] <= box[None, :, 2]) & (box[:, None, 2] >= box[None, :, 0])
+    meet &= (box[:, None, 1] <= box[None, :, 3]) & (box[:, None, 3] >= box[None, :, 1])
+    meet &= vis.first[vis.q_node][:, None] != vis.first[vis.q_node][None, :]  # not twins
+    if not len(free) and not meet.any():  # every chord inside its own outline only
+        return [], []
+    ok = np.isfinite(box[:, 0])
+    xs, ys = s.xy[:, 0], s.xy[:, 1]  # columns first: gathered faster
+    xa, xb, ya, yb = xs[chord], xs[chord + 1], ys[chord], ys[chord + 1]
+    x0, y0 = np.minimum(xa, xb), np.minimum(ya, yb)
+    x1, y1 = np.maximum(xa, xb), np.maximum(ya, yb)
+    found_q, found_f = [], []
     if len(free):
         pc, pq = box_pairs(
             np.column_stack([x0[free], y0[free]]),
@@ -188,9 +190,6 @@ def _outline_crossings(
     order = on[np.argsort(qo[on], kind="stable")]  # already sorted, as a rule
     starts = np.searchsorted(qo[order], np.arange(vis.nq), "left")
     stops = np.searchsorted(qo[order], np.arange(vis.nq), "right")
-    meet = (box[:, None, 0] <= box[None, :, 2]) & (box[:, None, 2] >= box[None, :, 0])
-    meet &= (box[:, None, 1] <= box[None, :, 3]) & (box[:, None, 3] >= box[None, :, 1])
-    meet &= vis.first[vis.q_node][:, None] != vis.first[vis.q_node][None, :]  # not twins
     # every (chord, outline) pair at once: the chords of ellipsoid j repeated
     # for each outline q meeting j's, then culled by q's box; one root call
     # (the same arithmetic per row as one conic at a time)
@@ -317,13 +316,13 @@ def near_misses(
     # 1e-14 on both surfaces, and refining chords beside them to tiny lengths
     # lost the closed-form outline crossings that mark changes of depth)
     net = _net_curves(s, set(vis.twins), meetings=False)
-    contour = _curves_of(s, lambda _node: {"contour"})
     if not net.any():
         return none
+    contour = _curves_of(s, lambda _node: {"contour"})
     chord = np.flatnonzero(s.cid[1:] == s.cid[:-1])
     chord = chord[(s.t[chord + 1] - s.t[chord]) > 0]
     xy = s.xy
-    length = np.abs(xy[chord + 1] - xy[chord]).max(axis=1)
+    length = np.abs(np.take(xy, chord + 1, axis=0) - np.take(xy, chord, axis=0)).max(axis=1)
     view = s.view[s.cid[chord]]
     chord, view = chord[length > 1e-6 * near[view]], view[length > 1e-6 * near[view]]
     net_chord = chord[net[s.cid[chord]]]
@@ -335,11 +334,12 @@ def near_misses(
         if not len(n_k):
             continue
         pad = float(near[k])
+        q0, q1, n0, n1 = (np.take(xy, i, axis=0) for i in (q_k, q_k + 1, n_k, n_k + 1))
         pq, pn = box_pairs(
-            np.minimum(xy[q_k], xy[q_k + 1]) - pad,
-            np.maximum(xy[q_k], xy[q_k + 1]) + pad,
-            np.minimum(xy[n_k], xy[n_k + 1]),
-            np.maximum(xy[n_k], xy[n_k + 1]),
+            np.minimum(q0, q1) - pad,
+            np.maximum(q0, q1) + pad,
+            np.minimum(n0, n1),
+            np.maximum(n0, n1),
         )
         a, b = q_k[pq], n_k[pn]
         # a curve beside its own surface's contour (a fold, a cusp of the
@@ -347,7 +347,7 @@ def near_misses(
         ca, cb = s.cid[a], s.cid[b]
         keep = (ca != cb) & (s.owner[ca] == s.owner[cb]) & (s.owner[ca] >= 0) & contour[cb]
         a, b = a[keep], b[keep]
-        d, f = _approach(xy[a], xy[a + 1], xy[b], xy[b + 1])
+        d, f = _approach(*(np.take(xy, i, axis=0) for i in (a, a + 1, b, b + 1)))
         # each polyline lies within its chords' sagitta of its curve: nearer
         # than both, the curves may cross; else they part (refined chords
         # have smaller sagittas, so this ends)

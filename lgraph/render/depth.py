@@ -53,7 +53,13 @@ SLIVER_RTOL = 10 * tol.SELF_HIT_RTOL
 
 def _count(s: Samples, vis: Occlusion, rows: np.ndarray) -> np.ndarray:
     owner, kind = s.owners(rows)
-    n = vis.sheets(s.xyz[rows], s.xy[rows], owner, kind, view=s.view[s.cid[rows]])
+    n = vis.sheets(
+        np.take(s.xyz, rows, axis=0),
+        np.take(s.xy, rows, axis=0),
+        owner,
+        kind,
+        view=s.view[s.cid[rows]],
+    )
     return np.maximum(n, 1)
 
 
@@ -69,7 +75,9 @@ def _candidates(s: Samples, vis: Occlusion, chord: np.ndarray, every: bool) -> n
     out = np.isin(chord, q)
     ends = np.concatenate([chord, chord + 1])
     owner, _ = s.owners(ends)
-    side = vis.own_sides(s.xyz[ends], owner, s.view[s.cid[ends]], s.uv[ends])
+    side = vis.own_sides(
+        np.take(s.xyz, ends, axis=0), owner, s.view[s.cid[ends]], np.take(s.uv, ends, axis=0)
+    )
     a, b = side[: len(chord)], side[len(chord) :]
     out |= np.any(a != b, axis=1)
     return out
@@ -135,7 +143,8 @@ def occlusion_depth(
     a = a[s.t[a + 1] - s.t[a] > DEPTH_RTOL * np.abs(s.t1[cid] - s.t0[cid])]
     if len(a):
         b = a + 1
-        new = merge(s, a, s.cid[b], s.t[b], s.xyz[b], s.uv[b], s.xy[b], np.ones(len(a), bool))
+        xyz, uv, xy = (np.take(x, b, axis=0) for x in (s.xyz, s.uv, s.xy))
+        new = merge(s, a, s.cid[b], s.t[b], xyz, uv, xy, np.ones(len(a), bool))
         out = np.empty(len(s.t), dtype=np.int64)
         out[~new] = depth
         out[new] = depth[a]

@@ -85,7 +85,8 @@ def _margin_search(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     if not len(idx):
         return
     rows = np.concatenate([vis_end[idx], hid_end[idx]])
-    fa, fb = np.split(vis.margin(s.xyz[rows], np.tile(q[idx], 2), np.tile(fl.owner[idx], 2),
+    xyz = np.take(s.xyz, rows, axis=0)
+    fa, fb = np.split(vis.margin(xyz, np.tile(q[idx], 2), np.tile(fl.owner[idx], 2),
                                  np.tile(fl.kind[idx], 2), s.view[s.cid[rows]]), 2)  # fmt: skip
     good = (fa <= 0) & (fb > 0)
     idx, fa, fb, q = idx[good], fa[good], fb[good], q[idx][good]
@@ -117,10 +118,10 @@ def _own_margin_search(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     vis_end = np.where(fl.hlo[idx0], fl.f[idx0] + 1, fl.f[idx0])
     rows = np.concatenate([vis_end, hid_end])
     ends = vis.own_margins(
-        s.xyz[rows],
+        np.take(s.xyz, rows, axis=0),
         np.tile(fl.owner[idx0], 2),
         np.tile(fl.kind[idx0], 2),
-        s.uv[rows],
+        np.take(s.uv, rows, axis=0),
         view=s.view[s.cid[rows]],
     )  # every function at both ends (brackets that stay open keep their ends)
     for i in range(len(ends)):

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .. import _tolerance as tol
-from ..geometry.vectors import box_corners
+from ..geometry.vectors import box_corners, dot
 from ..projectors import CentralProjector, Projector
 from ..surfaces._base import CONTOUR, OFF
 from ..surfaces._quadric_ray import (
@@ -282,8 +282,9 @@ class Occlusion:
                 sm = smax[pt]
                 ow, kd = owner[pt], kind[pt]
             coef = self._coefficients(q)
-            own = np.where(self._owned(o, q, ow, kd, coef), kd, OFF).astype(np.int8)
-            h = quadric_ray_hits(o, v, sm, own, *coef, count=count)
+            own, qc = self._owned(o, q, ow, kd, coef, values=True)
+            own = np.where(own, kd, OFF).astype(np.int8)
+            h = quadric_ray_hits(o, v, sm, own, *coef, count=count, qc=qc)
             if count:
                 np.add.at(out, pt, h)
             else:
@@ -297,12 +298,12 @@ class Occlusion:
                 continue
             mine = self._on(owner[idx], self.twins[j])
             own = np.where(mine, kind[idx], OFF).astype(np.int8)
-            o = inv.apply(xyz[idx])
+            o = inv.apply(np.take(xyz, idx, axis=0))  # rows: np.take is faster
             tie = np.flatnonzero(~mine & (kind[idx] != OFF))
             if len(tie):  # the tie rule: points lying on this surface count as its own
                 on = tie[lies_on(surf, o[tie])]
                 own[on] = kind[idx[on]]
-            v = inv.apply_vector(dirs[idx])
+            v = inv.apply_vector(np.take(dirs, idx, axis=0))
             if count:
                 out[idx] += np.asarray(surf.hit_count(o, v, smax[idx], own), dtype=np.int64)
             else:
@@ -417,26 +418,41 @@ class Occlusion:
         return np.isin(first, nodes) | np.isin(second, nodes)
 
     def _owned(
-        self, o: np.ndarray, q: np.ndarray, owner: np.ndarray, kind: np.ndarray, coef: tuple
-    ) -> np.ndarray:
+        self,
+        o: np.ndarray,
+        q: np.ndarray,
+        owner: np.ndarray,
+        kind: np.ndarray,
+        coef: tuple,
+        values: bool = False,
+    ) -> Any:
         """Which (centred point, quadric) pairs count as the point's own surface:
-        its own node's, or one it lies on (the tie rule for coincident surfaces)."""
+        its own node's, or one it lies on (the tie rule for coincident surfaces).
+        With ``values``, also the ray test's ``qc`` (the same einsums: the same
+        bits) when the tie rule computes it for all pairs (one quadric a pair)."""
         node = self.q_node[q]
         own = (self._on_first[owner + 1] == node) | (self._on_second[owner + 1] == node)
         tie = ~own & (kind != OFF)
         if not tie.any():
-            return own
+            return (own, None) if values else own
         A, b, d, _ = coef
         i = np.flatnonzero(tie)
-        oi = o[i]
-        Ai = A[i] if A.ndim == 3 else A
-        Ax = np.einsum("...ij,...j->...i", Ai, oi) if Ai.ndim == 3 else oi @ Ai
-        xAx = np.einsum("ij,ij->i", oi, Ax)
-        bx = np.einsum("ij,ij->i", oi, b[i] if b.ndim == 2 else np.broadcast_to(b, oi.shape))
+        qc = None
+        if values and A.ndim == 3:
+            xAx, bx = dot(o, np.einsum("...ij,...j->...i", A, o)), dot(o, b)
+            qc = xAx + bx + d
+            xAx, bx = xAx[i], bx[i]
+        else:
+            oi = np.take(o, i, axis=0)  # rows: np.take is several times faster
+            Ai = np.take(A, i, axis=0) if A.ndim == 3 else A
+            Ax = np.einsum("...ij,...j->...i", Ai, oi) if Ai.ndim == 3 else oi @ Ai
+            xAx = np.einsum("ij,ij->i", oi, Ax)
+            bi = np.take(b, i, axis=0) if b.ndim == 2 else np.broadcast_to(b, oi.shape)
+            bx = np.einsum("ij,ij->i", oi, bi)
         di = d[i] if np.ndim(d) else d
         scale = np.abs(xAx) + np.abs(bx) + np.abs(di)
         own[i] = np.abs(xAx + bx + di) <= tol.COINCIDENT_RTOL * scale
-        return own
+        return (own, qc) if values else own
 
     def _coefficients(self, q: np.ndarray) -> tuple:
         """``(A, b, d, eps)`` of quadrics ``q``: gathered per point, or the single

@@ -316,7 +316,7 @@ def refine(s: Samples, abs_tol: float | np.ndarray, settled: np.ndarray | None =
             return
         tm = 0.5 * (s.t[idx] + s.t[idx + 1])
         _, _, xy = s.evaluate(s.cid[idx], tm, True)
-        dev = seg_distance(xy, s.xy[idx], s.xy[idx + 1])
+        dev = seg_distance(xy, np.take(s.xy, idx, axis=0), np.take(s.xy, idx + 1, axis=0))
         split = ~(dev <= _at(abs_tol, s.cid[idx]))  # also splits where dev is NaN
         if not split.any():
             return

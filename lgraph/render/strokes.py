@@ -74,7 +74,9 @@ def run_strokes(
     idx = np.repeat(seg_start - (total - seg_len), seg_len) + np.arange(n_idx)
     ends_k = total[1::2].tolist()  # where each stroke's samples end
     bounds = list(zip([0, *ends_k[:-1]], ends_k))
-    xy, xyz, uv = ([g[i:j] for i, j in bounds] for g in (s.xy[idx], s.xyz[idx], s.uv[idx]))
+    xy, xyz, uv = (
+        [g[i:j] for i, j in bounds] for g in (np.take(a, idx, axis=0) for a in (s.xy, s.xyz, s.uv))
+    )
     lens = seg_len.reshape(-1, 2).sum(axis=1)  # the strokes' parameters, increasing:
     tu = unwrapped(s.t[idx], lens, (s.t1 - s.t0)[run_cid[rows]])
     # a style depends on the batch's own style, the node and the family: the

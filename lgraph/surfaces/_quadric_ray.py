@@ -41,6 +41,7 @@ def quadric_ray_hits(
     eps: np.ndarray | float,
     in_patch: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
     count: bool = False,
+    qc: np.ndarray | None = None,
 ) -> np.ndarray:
     """Whether rays meet the quadric(s) at some ``s`` with ``eps < s < smax``
     (with ``count``: how many times, 0, 1 or 2).
@@ -50,6 +51,8 @@ def quadric_ray_hits(
     second root counts), CONTOUR (grazing: never hidden by its own quadric),
     otherwise a foreign origin.  ``in_patch(points, index)`` (optional) says
     whether the hit points (rows ``index`` of the rays) lie on the drawn patch.
+    ``qc`` (optional): the quadrics' values ``o.A.o + b.o + d`` at the origins,
+    computed already (as here).
     """
     smax = np.broadcast_to(np.asarray(smax, dtype=float), o.shape[:-1])
     Av = np.einsum("...ij,...j->...i", A, v) if A.ndim == 3 else v @ A
@@ -73,8 +76,9 @@ def quadric_ray_hits(
         # then it does not hide its own contour either.
         off = (own != ON) & (own != CONTOUR)
         if off.any():
-            Ao = np.einsum("...ij,...j->...i", A, o) if A.ndim == 3 else o @ A
-            qc = _dot(o, Ao) + _dot(o, b) + d
+            if qc is None:
+                Ao = np.einsum("...ij,...j->...i", A, o) if A.ndim == 3 else o @ A
+                qc = _dot(o, Ao) + _dot(o, b) + d
             disc = qb * qb - 4 * qa * qc
             real = off & (disc >= 0)
             sq = np.sqrt(np.where(real, disc, 0.0))
