@@ -47,7 +47,7 @@ from .depth import occlusion_depth
 from .flips import locate_flips, seed_crossings
 from .intersections import intersection_batches, meeting_pairs
 from .occlusion import NotBatchable, Occlusion
-from .sampling import Samples, check_points, refine
+from .sampling import Samples, check_points, predict_points, refine
 from .strokes import run_strokes
 from .twins import twin_groups
 from .views import Views
@@ -291,12 +291,14 @@ def _render(
         abs_tol = [
             chord if d <= 0 else min(max(chord, tol.MIN_CHORD_TOLERANCE * d), 0.1 * d) for d in diag
         ]
+    chord_tol = abs_tol[0] if views.k == 1 else np.array(abs_tol)[s.view]
+    predict_points(s, chord_tol)  # a sampling far over the budget: refused before the ray tests
     shared = _shared_owners(s, partner, len(nodes))
     vis = Occlusion(nodes, views, shared)
     _classify(s, vis)
     seed_crossings(s, vis)
     settled = None if hidden_lines else _self_hidden(s, vis)
-    refine(s, abs_tol[0] if views.k == 1 else np.array(abs_tol)[s.view], settled)
+    refine(s, chord_tol, settled)
     _classify(s, vis)
     # a short piece between two samples: chords crossed twice by the net, or
     # passed closer than the two polylines' tolerances
