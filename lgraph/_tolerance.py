@@ -79,6 +79,16 @@ MAX_POINTS = 4_000_000
 #: each refinement pass stays the backstop.
 POINTS_PREDICTION_MARGIN = 4.0
 
+#: Most (ray, patch box) pairs the ray tests of a render's samples are
+#: predicted to meet on numeric surfaces (``lgraph.render.prediction``: a
+#: probe of ``RAY_PROBE`` first samples times the predicted sample count),
+#: refused before the first ray test: 36 to 140 us a box measured, so
+#: one to five minutes of work; the costliest gallery figure (the Roman
+#: surface) is predicted about 45 000 (the probe does not run below
+#: ``MAX_RAY_BOXES / 97`` samples a hiding surface).
+MAX_RAY_BOXES = 2_000_000
+RAY_PROBE = 256
+
 #: Rays tested together against a numeric surface (bounds the working memory).
 HIT_CHUNK_RAYS = 2048
 

@@ -121,3 +121,81 @@ def test_the_prediction_is_close_to_the_refined_count() -> None:
     for p, r in zip(predicted, refined):
         assert 0.5 < p / r < 2.0, (p, r)
     assert tol.POINTS_PREDICTION_MARGIN >= 4
+
+
+def _bumpy(k: int = 200) -> lg.ParametricSurface:
+    """A sphere with ``k`` bumps round its axis: each ray meets dozens of patch boxes."""
+
+    def f(u: Any, v: Any) -> np.ndarray:
+        u, v = np.broadcast_arrays(u, v)
+        r = 1 + 0.05 * np.sin(k * u)
+        return np.stack([r * np.cos(u) * np.sin(v), r * np.sin(u) * np.sin(v), r * np.cos(v)], -1)
+
+    return lg.ParametricSurface(f, (0, 2 * np.pi), (0.01, np.pi - 0.01))
+
+
+def test_costly_ray_tests_are_refused_before_they_run(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The refined samples' ray tests against a surface whose rays meet dozens
+    of patch boxes each are refused after the first samples' ray tests (which
+    measure the boxes a ray), before the refined ones: the 24 + 24 lines of
+    the bumpy sphere would meet about 4 million boxes (before: minutes; after:
+    refused in about 8 s).  Here with the budget lowered, so that the test is
+    quick: 2 + 2 lines."""
+    from lgraph.render.prediction import RayBudgetError
+
+    calls = []
+    classify = render_module._classify
+
+    def counted(s: Any, vis: Any, rows: Any = None) -> None:
+        calls.append(int(s.fresh.sum()) if rows is None else len(rows))
+        classify(s, vis, rows)
+
+    monkeypatch.setattr(render_module, "_classify", counted)
+    monkeypatch.setattr(tol, "MAX_RAY_BOXES", 20_000)
+    scene = lg.Scene()
+    scene.add(_bumpy(), lg.ParameterLines(2, 2), contour=False)
+    with pytest.raises(RayBudgetError) as info:
+        scene.render(VIEW)
+    assert len(calls) == 1  # the first samples only: the refined ones were never tested
+    message = str(info.value)
+    assert "refined samples would meet about" in message
+    assert "the patch boxes of node 0 (ParametricSurface(...))" in message
+    assert "draw fewer lines or raise tolerance" in message and "u1_range/u2_range" in message
+    assert "lgraph._tolerance.MAX_RAY_BOXES" in message
+
+
+def test_many_predicted_samples_are_probed_before_the_first_ray_tests(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """With many lines, a probe of RAY_PROBE first samples is tested first;
+    the rest are not when the prediction is over the budget."""
+    from lgraph.render.prediction import RayBudgetError
+
+    calls = []
+    classify = render_module._classify
+
+    def counted(s: Any, vis: Any, rows: Any = None) -> None:
+        calls.append(int(s.fresh.sum()) if rows is None else len(rows))
+        classify(s, vis, rows)
+
+    monkeypatch.setattr(render_module, "_classify", counted)
+    monkeypatch.setattr(tol, "MAX_RAY_BOXES", 50_000)
+    scene = lg.Scene()
+    scene.add(_bumpy(), lg.ParameterLines(40, 40), contour=False)
+    with pytest.raises(RayBudgetError, match="predicted samples would meet"):
+        scene.render(VIEW)
+    assert calls == [tol.RAY_PROBE]
+
+
+def test_ordinary_numeric_scenes_are_not_refused() -> None:
+    """A few gallery scenes with numeric surfaces and hidden lines render."""
+    import importlib.util
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1] / "gallery"
+    for stem in ("extra_moebius_strip", "extra_whitney_umbrella", "fig_7_2_ellipsoid"):
+        spec = importlib.util.spec_from_file_location(f"_bp_{stem}", root / f"{stem}.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        scene, projector, *kwargs = module.build()
+        assert scene.render(projector, **(kwargs[0] if kwargs else {})).strokes
