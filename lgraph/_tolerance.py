@@ -83,9 +83,10 @@ POINTS_PREDICTION_MARGIN = 4.0
 #: predicted to meet on numeric surfaces (``lgraph.render.prediction``: a
 #: probe of ``RAY_PROBE`` first samples times the predicted sample count),
 #: refused before the first ray test: 36 to 140 us a box measured, so
-#: one to five minutes of work; the costliest gallery figure (the Roman
-#: surface) is predicted about 45 000 (the probe does not run below
-#: ``MAX_RAY_BOXES / 97`` samples a hiding surface).
+#: one to five minutes of work; the costliest gallery figures are
+#: predicted at most 18 600 (the Klein bottle; the Roman surface 14 700).
+#: The probe runs only above ``MAX_RAY_BOXES / 97`` predicted samples a
+#: numeric surface.
 MAX_RAY_BOXES = 2_000_000
 RAY_PROBE = 256
 
