@@ -70,6 +70,26 @@ MAX_CURVES = 100_000
 #: 400 MB of samples, far beyond any figure (a gallery figure has < 200 000).
 MAX_POINTS = 4_000_000
 
+#: The refined sample count predicted from the first samples' chord
+#: deviations (``lgraph.render.sampling.predict_points``) is refused before
+#: any ray test when it exceeds ``MAX_POINTS`` this many times: on every
+#: gallery figure the prediction was 0.91 to 1.54 times the refined count
+#: (the most without hidden lines, whose far sides are not refined), so a
+#: render that fits the budget is not refused by it; the exact check before
+#: each refinement pass stays the backstop.
+POINTS_PREDICTION_MARGIN = 4.0
+
+#: Most (ray, patch box) pairs the ray tests of a render's samples are
+#: predicted to meet on numeric surfaces (``lgraph.render.prediction``: a
+#: probe of ``RAY_PROBE`` first samples times the predicted sample count),
+#: refused before the first ray test: 36 to 140 us a box measured, so
+#: one to five minutes of work; the costliest gallery figures are
+#: predicted at most 18 600 (the Klein bottle; the Roman surface 14 700).
+#: The probe runs only above ``MAX_RAY_BOXES / 97`` predicted samples a
+#: numeric surface.
+MAX_RAY_BOXES = 2_000_000
+RAY_PROBE = 256
+
 #: Rays tested together against a numeric surface (bounds the working memory).
 HIT_CHUNK_RAYS = 2048
 

@@ -57,6 +57,7 @@ from .page import Page
 from .progress import ExecutorError, Progress, checked, in_order
 from .projectors import Projector
 from .render import render_views
+from .render.prediction import RayBudgetError
 from .render.sampling import PointBudgetError
 
 __all__ = [
@@ -118,10 +119,10 @@ class _Job:
         drawings (PDF pages)."""
         try:
             drawings = render_views(self.scene, views, **self.render_options)
-        except PointBudgetError:
+        except (PointBudgetError, RayBudgetError):
             if len(views) == 1:
                 raise
-            # the batch exceeds the point budget that one view may keep to
+            # the batch exceeds the point (or ray-test) budget that one view may keep to
             drawings = [render_views(self.scene, [v], **self.render_options)[0] for v in views]
         return [self._frame(d, portable) for d in drawings]
 

@@ -335,6 +335,9 @@ def test_the_limits_page_lists_every_budget_with_its_value() -> None:
     values = {
         "MIN_CHORD_TOLERANCE": f"``{tol.MIN_CHORD_TOLERANCE:.0e}``".replace("e-0", "e-"),
         "MAX_POINTS": f"``{tol.MAX_POINTS}``",
+        "POINTS_PREDICTION_MARGIN": f"``{tol.POINTS_PREDICTION_MARGIN}``",
+        "MAX_RAY_BOXES": f"``{tol.MAX_RAY_BOXES}``",
+        "RAY_PROBE": f"``{tol.RAY_PROBE}``",
         "MAX_CURVES": f"``{tol.MAX_CURVES}``",
         "HIT_MAX_CANDIDATES": f"``{tol.HIT_MAX_CANDIDATES}``",
         "HIT_CHUNK_RAYS": f"``{tol.HIT_CHUNK_RAYS}``",

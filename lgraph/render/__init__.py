@@ -47,7 +47,8 @@ from .depth import occlusion_depth
 from .flips import locate_flips, seed_crossings
 from .intersections import intersection_batches, meeting_pairs
 from .occlusion import NotBatchable, Occlusion
-from .sampling import Samples, check_points, refine
+from .prediction import RayMeter, probe_ray_tests
+from .sampling import Samples, check_points, predict_points, refine
 from .strokes import run_strokes
 from .twins import twin_groups
 from .views import Views
@@ -78,9 +79,9 @@ def local_projector(projector: Projector, transform: Transform) -> Projector:
     return ParallelProjector(direction=d, up=up)
 
 
-def _classify(s: Samples, vis: Occlusion) -> None:
-    """Test the fresh samples against the scene, in one call."""
-    f = np.flatnonzero(s.fresh)
+def _classify(s: Samples, vis: Occlusion, rows: np.ndarray | None = None) -> None:
+    """Test the fresh samples (or those of ``rows``) against the scene, in one call."""
+    f = np.flatnonzero(s.fresh) if rows is None else rows
     if not len(f):
         return
     cause = np.empty(len(f), dtype=np.int64)
@@ -293,12 +294,19 @@ def _render(
         abs_tol = [
             chord if d <= 0 else min(max(chord, tol.MIN_CHORD_TOLERANCE * d), 0.1 * d) for d in diag
         ]
+    chord_tol = abs_tol[0] if views.k == 1 else np.array(abs_tol)[s.view]
+    # budgets predicted: a sampling, or ray tests, far over the budget are
+    # refused before the ray tests (:mod:`lgraph.render.prediction`)
+    predicted = predict_points(s, chord_tol)
     shared = _shared_owners(s, partner, len(nodes))
     vis = Occlusion(nodes, views, shared)
-    _classify(s, vis)
+    meter = RayMeter(nodes)  # the patch boxes a ray meets on numeric surfaces
+    probe_ray_tests(s, vis, meter, predicted, _classify)
+    meter.run(_classify, s, vis)
     seed_crossings(s, vis)
     settled = None if hidden_lines else _self_hidden(s, vis)
-    refine(s, abs_tol[0] if views.k == 1 else np.array(abs_tol)[s.view], settled)
+    refine(s, chord_tol, settled)
+    meter.check(int(s.fresh.sum()), "refined")  # before their ray tests
     _classify(s, vis)
     # a short piece between two samples: chords crossed twice by the net, or
     # passed closer than the two polylines' tolerances

@@ -23,7 +23,15 @@ from .views import Views, as_views, runs
 if TYPE_CHECKING:
     from ..curves import CurveBatch
 
-__all__ = ["Part", "PointBudgetError", "Samples", "check_points", "merge", "refine"]
+__all__ = [
+    "Part",
+    "PointBudgetError",
+    "Samples",
+    "check_points",
+    "merge",
+    "predict_points",
+    "refine",
+]
 
 
 class Part(NamedTuple):
@@ -325,44 +333,103 @@ def refine(s: Samples, abs_tol: float | np.ndarray, settled: np.ndarray | None =
 
 
 class PointBudgetError(ValueError):
-    """A render would hold more than ``MAX_POINTS`` sample points."""
+    """A render would hold more than ``MAX_POINTS`` sample points.
+
+    Raised before the initial sampling when the curves' first samples alone
+    exceed the budget; before any ray test when the deviations of the first
+    samples' chords predict a refined count more than
+    ``POINTS_PREDICTION_MARGIN`` times the budget (:func:`predict_points`);
+    and, the exact backstop, before every refinement pass that would exceed
+    it.  The message names the family and node that would take most of the
+    new samples and the knob that helps (the tolerance, the line counts,
+    ``contour=False``).
+    """
 
 
-def check_points(n: int, refining: bool = False, culprit: str = "") -> None:
+def check_points(
+    n: int, refining: bool = False, culprit: str = "", predicted: bool = False
+) -> None:
     """Refuse, before any work, a sampling that would hold more than
-    ``MAX_POINTS`` points (the render's memory budget).
+    ``MAX_POINTS`` points (the render's memory budget); ``predicted``: ``n``
+    is the estimate of :func:`predict_points`, refused when it is more than
+    ``POINTS_PREDICTION_MARGIN`` times the budget.
 
     >>> check_points(10)
     >>> check_points(10**9)  # doctest: +IGNORE_EXCEPTION_DETAIL
     Traceback (most recent call last):
     PointBudgetError: Scene.render: the curves need 1000000000 sample points; ...
     """
-    if n > tol.MAX_POINTS:
+    limit = tol.MAX_POINTS * (tol.POINTS_PREDICTION_MARGIN if predicted else 1)
+    if n > limit:
         why = (
             "raise tolerance or draw fewer lines"
             if refining
             else "draw fewer lines (lower the counts of the families)"
         )
+        need = f"need {n} sample points"
+        if predicted:  # refined samples grow as 1 / sqrt(tolerance)
+            need = (
+                f"would need about {n} sample points (predicted from the first "
+                f"{tol.INITIAL_SAMPLES} samples of each curve, before any refinement)"
+            )
+            why = (
+                f"raise tolerance (about {(n / tol.MAX_POINTS) ** 2:.3g} times) or draw fewer lines"
+            )
         raise PointBudgetError(
-            f"Scene.render: the curves need {n} sample points{culprit}; the limit is "
+            f"Scene.render: the curves {need}{culprit}; the limit is "
             f"{tol.MAX_POINTS} (lgraph._tolerance.MAX_POINTS); {why}"
         )
+
+
+def predict_points(s: Samples, abs_tol: float | np.ndarray) -> int:
+    """The number of samples :func:`refine` is predicted to reach, from the
+    first samples alone (before any ray test or refinement); a prediction
+    more than ``POINTS_PREDICTION_MARGIN`` times ``MAX_POINTS`` is refused
+    at once (PointBudgetError naming the family and node that would take
+    most samples).
+
+    A chord deviating ``dev`` from its curve needs about ``sqrt(dev /
+    abs_tol)`` pieces (the deviation of a smooth curve shrinks with the
+    square of the chord; ``dev`` from the second differences of the evenly
+    spaced first samples, as in :func:`refine`).  A chord's prediction is
+    capped at ``MAX_SPLIT * MAX_REFINE_PASSES`` pieces, what refinement adds
+    at most to a chord whose deviation never shrinks (a jump of the curve),
+    so jumps are not taken for smooth curves needing millions of samples.
+
+    >>> from lgraph import Curve, ParallelProjector
+    >>> c = Curve(lambda t: np.stack([np.cos(t), np.sin(t), 0 * t], -1), 0, 6.28)
+    >>> s = Samples([(0, c.batch(), Transform())], ParallelProjector(direction=(0, 0, 1)))
+    >>> predict_points(s, 1e-6)  # refine(s, 1e-6) then gives 4097
+    2337
+    """
+    dev = _predicted_deviation(s.xy, s.cid, s.t)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        m = np.ceil(1.05 * np.sqrt(dev / _at(abs_tol, s.cid[:-1])))
+    m = np.clip(np.nan_to_num(m, nan=1.0, posinf=1.0), 1, tol.MAX_SPLIT * tol.MAX_REFINE_PASSES)
+    m = np.where(s.cid[1:] == s.cid[:-1], m, 1).astype(np.int64)
+    total = len(s.t) + int((m - 1).sum())
+    if total > tol.POINTS_PREDICTION_MARGIN * tol.MAX_POINTS:
+        idx = np.flatnonzero(m > 1)
+        check_points(total, refining=True, culprit=_culprit(s, idx, m[idx]), predicted=True)
+    return total
 
 
 def _culprit(s: Samples, idx: np.ndarray, m: np.ndarray) -> str:
     """Which family of which node the split of chords ``idx`` into ``m``
     parts each would add most samples to, for the budget's message."""
-    added = np.bincount(s.part[s.cid[idx]], weights=m - 1, minlength=len(s.parts))
+    part = s.part[s.cid[idx]]
+    added = np.bincount(part, weights=m - 1, minlength=len(s.parts))
     p = int(np.argmax(added))
     batch, node, _, first = s.parts[p]
     names = batch.curve_family
-    family = batch.family
+    family, mine = batch.family, added[p]
     if names is not None:  # the family of most of the part's new samples
-        rows = s.cid[idx][s.part[s.cid[idx]] == p] - first
-        fams, counts = np.unique(np.asarray(names, dtype=object)[rows], return_counts=True)
-        family = str(fams[np.argmax(counts)])
+        rows = s.cid[idx][part == p] - first
+        fams, inverse = np.unique(np.asarray(names, dtype=object)[rows], return_inverse=True)
+        per = np.bincount(inverse.ravel(), weights=(m - 1)[part == p], minlength=len(fams))
+        family, mine = str(fams[np.argmax(per)]), per.max()
     what = type(batch.surface).__name__ if batch.surface is not None else "a free curve"
-    share = added[p] / max(added.sum(), 1)
+    share = mine / max(added.sum(), 1)
     knob = "; contour=False on that node leaves its contour out" if family == "contour" else ""
     return (
         f" ({100 * share:.0f} % of the new ones for family {family!r} of node {node}, {what}{knob})"

@@ -24,6 +24,17 @@ if TYPE_CHECKING:
 #: leaves per parameter of the hit hierarchy (a power of two)
 HIT_LEAVES = 64
 
+#: a list while the renderer probes the cost of its ray tests
+#: (:mod:`lgraph.render.prediction`): every descent of a hierarchy appends
+#: ``(id of the surface, number of (ray, leaf box) pairs met)``
+METER: list[tuple[int, int]] | None = None
+
+
+def set_meter(meter: list[tuple[int, int]] | None) -> None:
+    """Start (a list) or stop (None) metering the boxes met (:data:`METER`)."""
+    global METER
+    METER = meter
+
 
 def _cell_pad(S: np.ndarray) -> np.ndarray:
     """Padding of the box of each patch sampled by a 3x3 grid ``S (..., 3, 3, 3)``:
@@ -44,6 +55,7 @@ class _Hierarchy:
         n = HIT_LEAVES
         self.n = n
         self.name = type(surface).__name__
+        self.key = id(surface)
         self.lo1, self.lo2 = d.u1[0], d.u2[0]
         self.h1, self.h2 = d.span(0) / n, d.span(1) / n
         u1 = np.linspace(*d.u1, 2 * n + 1)
@@ -157,6 +169,8 @@ def _candidates(H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray) -
             r = np.repeat(r, 4)
             k = ((2 * i)[:, None] + di).ravel() * (2 * m) + ((2 * j)[:, None] + dj).ravel()
     n = H.n
+    if METER is not None:
+        METER.append((H.key, len(r)))
     return r, k // n, k % n, s0, s1
 
 
