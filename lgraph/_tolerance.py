@@ -62,6 +62,13 @@ FD_STEP_1 = 1e-3
 #: derivatives (rounding and truncation errors both near 1e-10).
 FD_STEP_2 = 2e-3
 
+#: A point whose normal ``x_1 x x_2`` is shorter than this times
+#: ``size^2 / (span_1 span_2)`` (the surface's typical ``|x_1| |x_2|``) is a
+#: singular point of the parametrization (a cuspidal edge, a pinch point, an
+#: edge or pole that collapses to a point): its normal is undefined there, and
+#: the one computed is rounding or finite-difference noise (near ``1e-12``).
+SINGULAR_NORMAL_RTOL = 1e-9
+
 #: Largest number of curves a single family may request.
 MAX_CURVES = 100_000
 

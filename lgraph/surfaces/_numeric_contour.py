@@ -20,6 +20,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline, make_interp_spline
 
 from .._own import CONTOUR, ON
+from .._tolerance import SINGULAR_NORMAL_RTOL
 from ..geometry.vectors import cross as _cross
 from ._memo import per_surface
 from ._seams import unjump
@@ -32,6 +33,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "contour",
+    "normal_floor",
     "project_to_contour",
     "project_to_zero",
     "view_cosine",
@@ -47,24 +49,36 @@ def _is_central(projector: Any) -> bool:
 
 
 def view_cosine(surface: Surface, projector: Projector, u1: Any, u2: Any) -> np.ndarray:
-    """``N . w / |w|`` (``N`` unit normal, ``w`` toward the viewer); zero on the contour."""
+    """``N . w / |w|`` (``N`` unit normal, ``w`` toward the viewer); zero on the
+    contour, NaN at singular points of the parametrization (:func:`normal_floor`)."""
     u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
     x1, x2 = surface.derivatives(u1, u2)
     n = _cross(x1, x2)
-    return _cosine(n, surface.point(u1, u2) if _is_central(projector) else None, projector)
+    p = surface.point(u1, u2) if _is_central(projector) else None
+    return _cosine(n, p, projector, normal_floor(surface))
 
 
-def _cosine(n: np.ndarray, p: np.ndarray | None, projector: Projector) -> np.ndarray:
+def normal_floor(surface: Surface) -> float:
+    """The length of ``x_1 x x_2`` below which a point is singular: its normal
+    is undefined, the computed one noise (``SINGULAR_NORMAL_RTOL`` of the
+    surface's typical ``|x_1| |x_2|``, ``size^2 / (span_1 span_2)``)."""
+    d = surface.domain
+    return SINGULAR_NORMAL_RTOL * surface.size**2 / (d.span(0) * d.span(1))
+
+
+def _cosine(
+    n: np.ndarray, p: np.ndarray | None, projector: Projector, floor: float = 0.0
+) -> np.ndarray:
     """``N . w / |w|`` from the normal ``n`` (any length) and, for a central
-    view, the point ``p``."""
+    view, the point ``p``; NaN where ``|n| <= floor`` (a singular point)."""
     if _is_central(projector):
         w = projector.eye - p
     else:
         w = np.broadcast_to(projector.frame[2], n.shape)
+    nn = np.linalg.norm(n, axis=-1)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.einsum("...i,...i", n, w) / (
-            np.linalg.norm(n, axis=-1) * np.linalg.norm(w, axis=-1)
-        )
+        f = np.einsum("...i,...i", n, w) / (nn * np.linalg.norm(w, axis=-1))
+    return np.where(nn > floor, f, np.nan)
 
 
 def _analytic_second_derivatives(surface: Surface) -> bool:
@@ -101,7 +115,7 @@ def view_cosine_gradient(
     nw = dot(n, w)
     with np.errstate(invalid="ignore", divide="ignore"):
         norm = np.sqrt(nn) * np.sqrt(ww)
-        f = nw / norm
+        f = np.where(np.sqrt(nn) > normal_floor(surface), nw / norm, np.nan)
         grads = []
         for ni, xi in ((n1, x1), (n2, x2)):
             a = dot(ni, w) - (dot(n, xi) if central else 0.0)
@@ -189,7 +203,8 @@ def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) ->
         return _cross(x1, x2), surface.point(U1, U2)
 
     n, p = per_surface(surface, ("contour grid", grid), grid_geometry)
-    curves = zero_set(surface, fun, grid, values=_cosine(n, p, projector))
+    values = _cosine(n, p, projector, normal_floor(surface))
+    curves = zero_set(surface, fun, grid, values=values)
     return [_contour_batch(surface, projector, curves)] if curves else []
 
 
