@@ -69,6 +69,16 @@ FD_STEP_2 = 2e-3
 #: the one computed is rounding or finite-difference noise (near ``1e-12``).
 SINGULAR_NORMAL_RTOL = 1e-9
 
+#: A flip of the unit normal between two grid nodes is a singular curve of
+#: the parametrization (a cuspidal edge) where ``|x_1 x x_2|`` at the refined
+#: crossing is below this fraction of its value at the nodes (a regular
+#: surface that turns by more than 90 degrees within a grid cell has no zero).
+SINGULAR_EDGE_RTOL = 1e-4
+
+#: A singular curve whose image spans less than this fraction of the
+#: surface's size is an edge collapsed to a point (drawn as nothing).
+SINGULAR_COLLAPSED_RTOL = 1e-9
+
 #: Largest number of curves a single family may request.
 MAX_CURVES = 100_000
 

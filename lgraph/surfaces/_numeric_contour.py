@@ -33,6 +33,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "contour",
+    "grid_geometry",
     "normal_floor",
     "project_to_contour",
     "project_to_zero",
@@ -191,18 +192,26 @@ def _difference(d: Any, fun: Any, p: np.ndarray, i: int, h: float) -> np.ndarray
         return (fun(b[:, 0], b[:, 1]) - fun(a[:, 0], a[:, 1])) / (b[:, i] - a[:, i])
 
 
+def grid_geometry(surface: Surface, grid: int = CONTOUR_GRID) -> tuple[np.ndarray, np.ndarray]:
+    """The normals ``x_1 x x_2`` and the points on the nodes of
+    :func:`~lgraph.surfaces._zero_set.grid_parameters`: the same for every
+    view, computed once per surface."""
+
+    def compute() -> tuple[np.ndarray, np.ndarray]:
+        U1, U2 = grid_parameters(surface, grid)
+        x1, x2 = surface.derivatives(U1, U2)
+        return _cross(x1, x2), surface.point(U1, U2)
+
+    return per_surface(surface, ("contour grid", grid), compute)
+
+
 def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) -> list[CurveBatch]:
     """Numeric contour of ``surface`` for ``projector`` (local frame), as one batch."""
 
     def fun(u1: Any, u2: Any) -> np.ndarray:
         return view_cosine(surface, projector, u1, u2)
 
-    def grid_geometry() -> tuple[np.ndarray, np.ndarray]:  # the same for every view
-        U1, U2 = grid_parameters(surface, grid)
-        x1, x2 = surface.derivatives(U1, U2)
-        return _cross(x1, x2), surface.point(U1, U2)
-
-    n, p = per_surface(surface, ("contour grid", grid), grid_geometry)
+    n, p = grid_geometry(surface, grid)
     values = _cosine(n, p, projector, normal_floor(surface))
     curves = zero_set(surface, fun, grid, values=values)
     return [_contour_batch(surface, projector, curves)] if curves else []
