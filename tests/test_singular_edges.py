@@ -189,3 +189,23 @@ def test_pinch_point_and_collapsed_edge_draw_no_edge():
     assert res < 1e-7
     caster = MeshCaster(whitney, (-1, 1), (-1, 1), 300, 300, p)
     assert _check_visibility(d, caster, (0.01, 0.01), 0.02) > 200
+
+
+def sphere(u, v):
+    return _stack(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v))
+
+
+def test_sphere_with_undeclared_poles():
+    """A sphere chart whose collapsed ends ``v = 0, pi`` are not declared
+    poles, seen along the equator: its contour is a great circle through both
+    poles, found whole (two meridians of length pi) and on the unit circle of
+    the view, where the grid once ran through the poles' undefined normals
+    (non-finite contour points: a ValueError)."""
+    s = lg.ParametricSurface(sphere, (0, 2 * np.pi), (0, np.pi), periodic=(True, False))
+    p = lg.ParallelProjector(direction=(1.0, 0.3, 0.0))
+    d = _contour_samples(s, p)
+    contour = [st for st in d.strokes if st.family == "contour"]
+    length = sum(np.linalg.norm(np.diff(st.xyz, axis=0), axis=1).sum() for st in contour)
+    assert length == pytest.approx(2 * np.pi, rel=2e-3)  # chords; a cell missing at a pole: 1e-2
+    xyz = np.concatenate([st.xyz for st in contour])
+    assert np.abs(xyz @ p.frame[2]).max() < 1e-7

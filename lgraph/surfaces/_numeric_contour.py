@@ -174,8 +174,9 @@ def project_to_zero(
         ok = np.isfinite(f) & (gg > 0)
         with np.errstate(invalid="ignore", divide="ignore"):
             step = np.where(ok, f / gg, 0.0)
-        uv[active, 0] -= step * g1s * scale[0]
-        uv[active, 1] -= step * g2s * scale[1]
+        # no step where f or its gradient is undefined (a singular point)
+        uv[active, 0] -= np.where(ok, step * g1s, 0.0) * scale[0]
+        uv[active, 1] -= np.where(ok, step * g2s, 0.0) * scale[1]
         uv[active] = d.clip(uv[active])  # Newton iterates stay in the rectangle
         active = active[ok & (np.abs(f) > ftol)]
     return uv

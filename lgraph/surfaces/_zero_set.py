@@ -46,7 +46,39 @@ def _grid_axis(surface: Surface, i: int, n: int) -> np.ndarray:
     if d.periodic[i] is True:
         return lo + (hi - lo) * np.arange(n) / n
     inset = 1e-7 * (hi - lo)
-    return np.linspace(lo + inset * d.poles[i][0], hi - inset * d.poles[i][1], n)
+    low, high = (a or b for a, b in zip(d.poles[i], collapsed_ends(surface)[i]))
+    return np.linspace(lo + inset * low, hi - inset * high, n)
+
+
+def collapsed_ends(surface: Surface) -> tuple[tuple[bool, bool], tuple[bool, bool]]:
+    """Per parameter, which of its ends (not glued) the surface maps to one
+    point, declared a pole or not (a sphere chart whose poles are not
+    declared): the grid keeps ``1e-7`` of the span from them, as from poles,
+    since the normal is undefined there (computed once per surface)."""
+    from .._tolerance import SINGULAR_COLLAPSED_RTOL
+    from ._memo import per_surface
+
+    def compute() -> tuple[tuple[bool, bool], tuple[bool, bool]]:
+        d = surface.domain
+        t = np.linspace(0.0, 1.0, 33)
+        out = []
+        for i in (0, 1):
+            lo, hi = d.range(1 - i)
+            along = lo + (hi - lo) * t
+            ends = []
+            for end in d.range(i):
+                if d.glued[i]:
+                    ends.append(False)
+                    continue
+                uv = (np.full_like(along, end), along)
+                pts = surface.point(*(uv if i == 0 else uv[::-1]))
+                ends.append(
+                    bool(np.ptp(pts, axis=0).max() <= SINGULAR_COLLAPSED_RTOL * surface.size)
+                )
+            out.append(tuple(ends))
+        return out[0], out[1]
+
+    return per_surface(surface, "collapsed ends", compute)
 
 
 def _edge_roots(
