@@ -62,6 +62,23 @@ FD_STEP_1 = 1e-3
 #: derivatives (rounding and truncation errors both near 1e-10).
 FD_STEP_2 = 2e-3
 
+#: A point whose normal ``x_1 x x_2`` is shorter than this times
+#: ``size^2 / (span_1 span_2)`` (the surface's typical ``|x_1| |x_2|``) is a
+#: singular point of the parametrization (a cuspidal edge, a pinch point, an
+#: edge or pole that collapses to a point): its normal is undefined there, and
+#: the one computed is rounding or finite-difference noise (near ``1e-12``).
+SINGULAR_NORMAL_RTOL = 1e-9
+
+#: A flip of the unit normal between two grid nodes is a singular curve of
+#: the parametrization (a cuspidal edge) where ``|x_1 x x_2|`` at the refined
+#: crossing is below this fraction of its value at the nodes (a regular
+#: surface that turns by more than 90 degrees within a grid cell has no zero).
+SINGULAR_EDGE_RTOL = 1e-4
+
+#: A singular curve whose image spans less than this fraction of the
+#: surface's size is an edge collapsed to a point (drawn as nothing).
+SINGULAR_COLLAPSED_RTOL = 1e-9
+
 #: Largest number of curves a single family may request.
 MAX_CURVES = 100_000
 

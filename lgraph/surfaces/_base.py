@@ -310,11 +310,19 @@ class Surface:
     def boundary(self) -> list[CurveBatch]:
         """The edges of the drawn patch (family ``"boundary"``), drawn by default
         like the contour: the parameter lines at the non-periodic, non-pole ends
-        of the domain.  Surfaces made of several pieces override this."""
+        of the domain, and, on a surface with the numeric contour, the singular
+        curves of its parametrization inside the domain (cuspidal edges; see
+        :mod:`!lgraph.surfaces._singular_edges`).  Surfaces made of several
+        pieces override this."""
         from ..families import parameter_line_batches
 
         d = self.domain
-        return parameter_line_batches(self, d.ends(0), d.ends(1), "boundary", "boundary")
+        edges = parameter_line_batches(self, d.ends(0), d.ends(1), "boundary", "boundary")
+        if type(self).contour is Surface.contour:
+            from ._singular_edges import singular_edge_batches
+
+            edges = edges + singular_edge_batches(self)
+        return edges
 
     def parameter_lines(self, n1: int, n2: int) -> list[CurveBatch]:
         """``n1`` lines ``u1 = const`` (family ``"u1"``) and ``n2`` lines

@@ -20,6 +20,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline, make_interp_spline
 
 from .._own import CONTOUR, ON
+from .._tolerance import SINGULAR_NORMAL_RTOL
 from ..geometry.vectors import cross as _cross
 from ._memo import per_surface
 from ._seams import unjump
@@ -32,6 +33,8 @@ if TYPE_CHECKING:
 
 __all__ = [
     "contour",
+    "grid_geometry",
+    "normal_floor",
     "project_to_contour",
     "project_to_zero",
     "view_cosine",
@@ -47,24 +50,36 @@ def _is_central(projector: Any) -> bool:
 
 
 def view_cosine(surface: Surface, projector: Projector, u1: Any, u2: Any) -> np.ndarray:
-    """``N . w / |w|`` (``N`` unit normal, ``w`` toward the viewer); zero on the contour."""
+    """``N . w / |w|`` (``N`` unit normal, ``w`` toward the viewer); zero on the
+    contour, NaN at singular points of the parametrization (:func:`normal_floor`)."""
     u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
     x1, x2 = surface.derivatives(u1, u2)
     n = _cross(x1, x2)
-    return _cosine(n, surface.point(u1, u2) if _is_central(projector) else None, projector)
+    p = surface.point(u1, u2) if _is_central(projector) else None
+    return _cosine(n, p, projector, normal_floor(surface))
 
 
-def _cosine(n: np.ndarray, p: np.ndarray | None, projector: Projector) -> np.ndarray:
+def normal_floor(surface: Surface) -> float:
+    """The length of ``x_1 x x_2`` below which a point is singular: its normal
+    is undefined, the computed one noise (``SINGULAR_NORMAL_RTOL`` of the
+    surface's typical ``|x_1| |x_2|``, ``size^2 / (span_1 span_2)``)."""
+    d = surface.domain
+    return SINGULAR_NORMAL_RTOL * surface.size**2 / (d.span(0) * d.span(1))
+
+
+def _cosine(
+    n: np.ndarray, p: np.ndarray | None, projector: Projector, floor: float = 0.0
+) -> np.ndarray:
     """``N . w / |w|`` from the normal ``n`` (any length) and, for a central
-    view, the point ``p``."""
+    view, the point ``p``; NaN where ``|n| <= floor`` (a singular point)."""
     if _is_central(projector):
         w = projector.eye - p
     else:
         w = np.broadcast_to(projector.frame[2], n.shape)
+    nn = np.linalg.norm(n, axis=-1)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.einsum("...i,...i", n, w) / (
-            np.linalg.norm(n, axis=-1) * np.linalg.norm(w, axis=-1)
-        )
+        f = np.einsum("...i,...i", n, w) / (nn * np.linalg.norm(w, axis=-1))
+    return np.where(nn > floor, f, np.nan)
 
 
 def _analytic_second_derivatives(surface: Surface) -> bool:
@@ -101,7 +116,7 @@ def view_cosine_gradient(
     nw = dot(n, w)
     with np.errstate(invalid="ignore", divide="ignore"):
         norm = np.sqrt(nn) * np.sqrt(ww)
-        f = nw / norm
+        f = np.where(np.sqrt(nn) > normal_floor(surface), nw / norm, np.nan)
         grads = []
         for ni, xi in ((n1, x1), (n2, x2)):
             a = dot(ni, w) - (dot(n, xi) if central else 0.0)
@@ -159,8 +174,9 @@ def project_to_zero(
         ok = np.isfinite(f) & (gg > 0)
         with np.errstate(invalid="ignore", divide="ignore"):
             step = np.where(ok, f / gg, 0.0)
-        uv[active, 0] -= step * g1s * scale[0]
-        uv[active, 1] -= step * g2s * scale[1]
+        # no step where f or its gradient is undefined (a singular point)
+        uv[active, 0] -= np.where(ok, step * g1s, 0.0) * scale[0]
+        uv[active, 1] -= np.where(ok, step * g2s, 0.0) * scale[1]
         uv[active] = d.clip(uv[active])  # Newton iterates stay in the rectangle
         active = active[ok & (np.abs(f) > ftol)]
     return uv
@@ -177,19 +193,28 @@ def _difference(d: Any, fun: Any, p: np.ndarray, i: int, h: float) -> np.ndarray
         return (fun(b[:, 0], b[:, 1]) - fun(a[:, 0], a[:, 1])) / (b[:, i] - a[:, i])
 
 
+def grid_geometry(surface: Surface, grid: int = CONTOUR_GRID) -> tuple[np.ndarray, np.ndarray]:
+    """The normals ``x_1 x x_2`` and the points on the nodes of
+    :func:`~lgraph.surfaces._zero_set.grid_parameters`: the same for every
+    view, computed once per surface."""
+
+    def compute() -> tuple[np.ndarray, np.ndarray]:
+        U1, U2 = grid_parameters(surface, grid)
+        x1, x2 = surface.derivatives(U1, U2)
+        return _cross(x1, x2), surface.point(U1, U2)
+
+    return per_surface(surface, ("contour grid", grid), compute)
+
+
 def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) -> list[CurveBatch]:
     """Numeric contour of ``surface`` for ``projector`` (local frame), as one batch."""
 
     def fun(u1: Any, u2: Any) -> np.ndarray:
         return view_cosine(surface, projector, u1, u2)
 
-    def grid_geometry() -> tuple[np.ndarray, np.ndarray]:  # the same for every view
-        U1, U2 = grid_parameters(surface, grid)
-        x1, x2 = surface.derivatives(U1, U2)
-        return _cross(x1, x2), surface.point(U1, U2)
-
-    n, p = per_surface(surface, ("contour grid", grid), grid_geometry)
-    curves = zero_set(surface, fun, grid, values=_cosine(n, p, projector))
+    n, p = grid_geometry(surface, grid)
+    values = _cosine(n, p, projector, normal_floor(surface))
+    curves = zero_set(surface, fun, grid, values=values)
     return [_contour_batch(surface, projector, curves)] if curves else []
 
 

@@ -26,7 +26,7 @@ from ._seams import join_pieces
 if TYPE_CHECKING:
     from ._base import Surface
 
-__all__ = ["zero_set"]
+__all__ = ["march", "zero_set"]
 
 #: grid nodes per parameter for the contour scan
 CONTOUR_GRID = 193
@@ -46,7 +46,39 @@ def _grid_axis(surface: Surface, i: int, n: int) -> np.ndarray:
     if d.periodic[i] is True:
         return lo + (hi - lo) * np.arange(n) / n
     inset = 1e-7 * (hi - lo)
-    return np.linspace(lo + inset * d.poles[i][0], hi - inset * d.poles[i][1], n)
+    low, high = (a or b for a, b in zip(d.poles[i], collapsed_ends(surface)[i]))
+    return np.linspace(lo + inset * low, hi - inset * high, n)
+
+
+def collapsed_ends(surface: Surface) -> tuple[tuple[bool, bool], tuple[bool, bool]]:
+    """Per parameter, which of its ends (not glued) the surface maps to one
+    point, declared a pole or not (a sphere chart whose poles are not
+    declared): the grid keeps ``1e-7`` of the span from them, as from poles,
+    since the normal is undefined there (computed once per surface)."""
+    from .._tolerance import SINGULAR_COLLAPSED_RTOL
+    from ._memo import per_surface
+
+    def compute() -> tuple[tuple[bool, bool], tuple[bool, bool]]:
+        d = surface.domain
+        t = np.linspace(0.0, 1.0, 33)
+        out = []
+        for i in (0, 1):
+            lo, hi = d.range(1 - i)
+            along = lo + (hi - lo) * t
+            ends = []
+            for end in d.range(i):
+                if d.glued[i]:
+                    ends.append(False)
+                    continue
+                uv = (np.full_like(along, end), along)
+                pts = surface.point(*(uv if i == 0 else uv[::-1]))
+                ends.append(
+                    bool(np.ptp(pts, axis=0).max() <= SINGULAR_COLLAPSED_RTOL * surface.size)
+                )
+            out.append(tuple(ends))
+        return out[0], out[1]
+
+    return per_surface(surface, "collapsed ends", compute)
 
 
 def _edge_roots(
@@ -80,20 +112,59 @@ def zero_set(
     crossings joined into polylines in the parameter plane.  ``values``, if
     given, is ``fun`` on the nodes of :func:`grid_parameters` (computed by
     the caller from what it keeps between calls)."""
-    d = surface.domain
-    n1, n2 = grid, grid
-    a1, a2 = _grid_axis(surface, 0, n1), _grid_axis(surface, 1, n2)
+    a1, a2 = _grid_axis(surface, 0, grid), _grid_axis(surface, 1, grid)
     F = fun(*np.meshgrid(a1, a2, indexing="ij")) if values is None else values
     F = np.where(np.isfinite(F), F, 0.0)
     pos = F >= 0
+
+    def crossed(i0: np.ndarray, j0: np.ndarray, i1: np.ndarray, j1: np.ndarray) -> np.ndarray:
+        return pos[i0, j0] != pos[i1, j1]
+
+    def centre_like_corner(i: np.ndarray, j: np.ndarray, uc1: Any, uc2: Any) -> np.ndarray:
+        return (fun(uc1, uc2) >= 0) == pos[i, j]
+
+    def fun_p(p: np.ndarray) -> np.ndarray:
+        return fun(p[:, 0], p[:, 1])
+
+    # the rounding level of fun: a few units in the last place of its largest value
+    ftol = EDGE_FTOL * float(np.abs(F).max())
+
+    def crossings(pa: np.ndarray, pb: np.ndarray, ends: tuple) -> tuple[np.ndarray, np.ndarray]:
+        i0, j0, i1, j1 = ends
+        pts = _edge_roots(fun_p, pa, pb, F[i0, j0], F[i1, j1], ftol)
+        # a sign change that is no zero: ``fun`` jumps there (the normal of a
+        # parametrization that folds over a degenerate line, such as the edge of
+        # Apery's Boy surface that collapses to a point, flips with the
+        # orientation) or is undefined (NaN, counted as 0 on the grid).  The
+        # root search ends at the jump with ``|fun|`` still of the order of its
+        # values; a true zero is refined to the rounding level
+        real = np.abs(fun_p(pts)) <= JUMP_RTOL * float(np.abs(F).max())
+        return pts, real
+
+    return march(surface.domain, a1, a2, crossed, centre_like_corner, crossings)
+
+
+def march(d: Any, a1: np.ndarray, a2: np.ndarray, crossed: Any, centre_like_corner: Any,
+          crossings: Any) -> list[tuple[np.ndarray, bool]]:  # fmt: skip
+    """Marching squares on the grid ``a1 x a2`` of domain ``d`` (periodic
+    parameters wrap): ``crossed(i0, j0, i1, j1)``, which grid edges between
+    nodes ``(i0, j0)`` and ``(i1, j1)`` the curves cross;
+    ``centre_like_corner(i, j, uc1, uc2)``, for cells crossed on all four
+    edges, whether the centre ``(uc1, uc2)`` of the cell with bottom-left
+    corner ``(i, j)`` lies on that corner's side; ``crossings(pa, pb, (i0,
+    j0, i1, j1))``, the crossing points ``(n, 2)`` on the crossed edges ``pa
+    -> pb`` and which are real (the others are left out with their segments).
+    Returns the polylines ``(points, closed)`` joining the crossings cell by
+    cell (pieces across a twisted seam joined by :mod:`._seams`)."""
+    n1, n2 = len(a1), len(a2)
     per1, per2 = d.periodic[0] is True, d.periodic[1] is True  # twisted: joined below
     e1 = n1 if per1 else n1 - 1  # number of edges along u1 per row
     e2 = n2 if per2 else n2 - 1
     # horizontal edges (i, j)-(i+1, j): ids i * n2 + j ; vertical (i, j)-(i, j+1): n1 n2 + i n2 + j
     ih, jh = np.meshgrid(np.arange(e1), np.arange(n2), indexing="ij")
     iv, jv = np.meshgrid(np.arange(n1), np.arange(e2), indexing="ij")
-    hcross = pos[ih, jh] != pos[(ih + 1) % n1, jh]
-    vcross = pos[iv, jv] != pos[iv, (jv + 1) % n2]
+    hcross = crossed(ih, jh, (ih + 1) % n1, jh)
+    vcross = crossed(iv, jv, iv, (jv + 1) % n2)
     cross = np.zeros(2 * n1 * n2, bool)
     cross[(ih * n2 + jh)[hcross]] = True
     cross[(n1 * n2 + iv * n2 + jv)[vcross]] = True
@@ -125,12 +196,13 @@ def zero_set(
         i41, j41 = ci1[four], cj1[four]
         uc1 = 0.5 * (a1[i4] + np.where(i41 == 0, a1[i4] + (a1[1] - a1[0]), a1[i41]))
         uc2 = 0.5 * (a2[j4] + np.where(j41 == 0, a2[j4] + (a2[1] - a2[0]), a2[j41]))
-        fc = fun(uc1, uc2) >= 0
-        same = fc == pos[i4, j4]  # centre like the bottom-left corner
+        same = centre_like_corner(i4, j4, uc1, uc2)
         Ef = E[four]
         # same: cut off BR (bottom,right) and TL (top,left); else BL (bottom,left), TR (top,right)
         seg_a += [Ef[:, 0], Ef[:, 2]]
         seg_b += [np.where(same, Ef[:, 1], Ef[:, 3]), np.where(same, Ef[:, 3], Ef[:, 1])]
+    if not seg_a:
+        return []
     sa, sb = np.concatenate(seg_a), np.concatenate(seg_b)
     ids = np.nonzero(cross)[0]
     index = np.full(len(cross), -1)
@@ -148,20 +220,7 @@ def zero_set(
         pb[:, 0] = np.where(is_h & (i1 == 0), a1[i0] + (a1[1] - a1[0]), pb[:, 0])
     if per2:
         pb[:, 1] = np.where(~is_h & (j1 == 0), a2[j0] + (a2[1] - a2[0]), pb[:, 1])
-
-    def fun_p(p: np.ndarray) -> np.ndarray:
-        return fun(p[:, 0], p[:, 1])
-
-    # the rounding level of fun: a few units in the last place of its largest value
-    ftol = EDGE_FTOL * float(np.abs(F).max())
-    pts = _edge_roots(fun_p, pa, pb, F[i0, j0], F[i1, j1], ftol)
-    # a sign change that is no zero: ``fun`` jumps there (the normal of a
-    # parametrization that folds over a degenerate line, such as the edge of
-    # Apery's Boy surface that collapses to a point, flips with the
-    # orientation) or is undefined (NaN, counted as 0 on the grid).  The
-    # root search ends at the jump with ``|fun|`` still of the order of its
-    # values; a true zero is refined to the rounding level
-    real = np.abs(fun_p(pts)) <= JUMP_RTOL * float(np.abs(F).max())
+    pts, real = crossings(pa, pb, (i0, j0, i1, j1))
     keep = real[index[sa]] & real[index[sb]]
     sa, sb = sa[keep], sb[keep]
     m = len(ids)
