@@ -14,12 +14,12 @@ Run:  python benchmarks/bench_animation.py [--only turntable,workers,memory]
   the runs over the median of all cold frames, in wall-clock time and, for
   the runs in this process, in CPU time (``time.process_time``: less
   disturbed by other processes on a loaded machine).  The turntable renders
-  its views in batches of ``lgraph.animation.BATCH_FRAMES`` and samples its
+  its views in batches of ``lgraph.animation.frames.BATCH_FRAMES`` and samples its
   raster frames to a quarter pixel (``tolerance="pixel"``, animate's default
   for raster frames).  Also the turntable with the cache turned off (4 of
   the frames, times 6, once) and with the default executor
   (``executor=None, workers=None``: a local process pool only when the run
-  is long enough, see ``lgraph.animation.POOL_MIN_SECONDS``) and with a pool
+  is long enough, see ``lgraph.animation.frames.POOL_MIN_SECONDS``) and with a pool
   forced (``workers=2``), and serially with ``render_options={"tolerance":
   1e-4}`` (the cold frame's own sampling: chords within 1e-4 of the
   figure's diagonal).

@@ -34,9 +34,9 @@ from pathlib import Path
 import numpy as np
 
 import lgraph as lg
-from lgraph.backends._common import page_runs
-from lgraph.bezier import page_curve_runs
-from lgraph.units import length_pt
+from lgraph.output.backends._common import page_runs
+from lgraph.output.bezier import page_curve_runs
+from lgraph.output.units import length_pt
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from page_curves import deviation  # noqa: E402  (the tests' independent measure)

@@ -3,7 +3,7 @@
 Run:  python benchmarks/bench_contourpy.py [--repeat 7] [--grid 193]
 
 Numeric contours and level lines are the zero sets of a function on a
-parameter grid (``lgraph.surfaces._zero_set.zero_set``: marching squares,
+parameter grid (``lgraph.surfaces.parametric._zero_set.zero_set``: marching squares,
 each crossing refined on its grid edge to machine precision by
 ``_edge_roots``, crossings joined into curves, across periodic seams too).
 The contourpy pipeline does the same with ``contourpy.contour_generator``
@@ -34,7 +34,7 @@ import numpy as np
 
 def cases() -> list[tuple[str, Any, Any]]:
     import lgraph as lg
-    from lgraph.surfaces._numeric_contour import view_cosine
+    from lgraph.surfaces.parametric._contour import view_cosine
 
     torus = lg.Torus(2.0, 0.7)
     generic = lg.ParametricSurface(
@@ -59,7 +59,7 @@ def cases() -> list[tuple[str, Any, Any]]:
 
 
 def grid_values(surface: Any, fun: Any, grid: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    from lgraph.surfaces._zero_set import _grid_axis
+    from lgraph.surfaces.parametric._zero_set import _grid_axis
 
     a1, a2 = _grid_axis(surface, 0, grid), _grid_axis(surface, 1, grid)
     U1, U2 = np.meshgrid(a1, a2, indexing="ij")
@@ -73,7 +73,7 @@ def contourpy_zero_set(
     """(lines as contourpy returns them, the refined crossings, times of the parts)."""
     import contourpy
 
-    from lgraph.surfaces._zero_set import _edge_roots
+    from lgraph.surfaces.parametric._zero_set import _edge_roots
 
     d = surface.domain
     t0 = time.perf_counter()
@@ -135,7 +135,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     from scipy.spatial import cKDTree
 
-    from lgraph.surfaces._zero_set import zero_set
+    from lgraph.surfaces.parametric._zero_set import zero_set
 
     print(f"grid {args.grid} x {args.grid}, medians of {args.repeat} alternating runs\n")
     print(

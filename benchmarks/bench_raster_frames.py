@@ -43,8 +43,8 @@ import raster_reference as ref  # noqa: E402
 from PIL import Image  # noqa: E402
 
 import lgraph as lg  # noqa: E402
-import lgraph.backends.png as png  # noqa: E402
-from lgraph.frame_writers import GifWriter  # noqa: E402
+import lgraph.output.backends.png as png  # noqa: E402
+from lgraph.animation.writers import GifWriter  # noqa: E402
 
 STEMS = ("fig_7_2_ellipsoid", "extra_monkey_saddle")
 

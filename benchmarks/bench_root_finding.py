@@ -8,7 +8,7 @@ smooth function in each of many brackets, here ``f_k(x) = cos(x) - c_k x`` on
 ``[0, 2]`` (one root each, c_k in (0.5, 3)), solved to 1e-15 of the bracket.
 Three solvers: the vectorized Illinois (modified regula falsi) iteration that
 lgraph used until issue 12 (``_illinois`` below, verbatim from
-``lgraph/surfaces/ruled.py`` at 72b481e: the baseline), lgraph's
+``lgraph/surfaces/ruled/__init__.py`` at 72b481e: the baseline), lgraph's
 ``lgraph._roots.bracketed_roots`` (scipy's ``find_root``, Chandrupatla's
 method, behind lgraph's calling convention ``f(x, sel)`` with the end values
 given), and scipy's ``find_root`` called directly.  Reported: medians of the

@@ -172,7 +172,7 @@ FIELD_DUPLICATE_RTOL = 1e-5
 #: curvature) or L11 and L22 (asymptotic lines) vanish to this, relative
 PARAMETER_LINES_RTOL = 1e-7
 
-#: Pen plotters (lgraph.plotter): an end of a stroke lying within the merge
+#: Pen plotters (lgraph.output.plotter): an end of a stroke lying within the merge
 #: tolerance of another stroke over at least this many tolerances is trimmed as
 #: a duplicate (a whole stroke lying so is always removed; stretches inside a
 #: stroke never are: they are crossings or tangencies, and removing them would
@@ -212,7 +212,7 @@ MAX_FIELD_LINES = 500
 #: count: about 15 s for 100 + 100).
 MAX_EVEN_FIELD_LINES = 100
 
-# -- animation frames (lgraph.frame_geometry) -----------------------------------
+# -- animation frames (lgraph.animation.window) -----------------------------------
 #: ``render_options={"tolerance": "pixel"}``: raster frames are sampled so that
 #: every chord stays within this many output pixels of its curve (instead of
 #: the render's default, ``CHORD_TOLERANCE`` of the figure's diagonal: 0.06 px

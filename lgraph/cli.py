@@ -7,7 +7,7 @@ it; it is accepted before or after the command).  An unexpected failure
 exits with status 1, also without a traceback unless ``--debug``.
 
 A SIGTERM or SIGHUP stops ``render``, ``animate`` and ``demo`` cleanly, as
-Ctrl-C does (``lgraph._atomic.signals_as_exception``): no temporary file is
+Ctrl-C does (``lgraph.output._atomic.signals_as_exception``): no temporary file is
 left, the old file at the target is kept, worker processes are stopped, and
 the command prints ``lgraph <command>: terminated by SIGTERM`` and exits with
 128 + the signal's number (143; Ctrl-C: 130).  Plugin code that calls
@@ -59,7 +59,7 @@ def demo_scene():  # noqa: ANN201
 def _output_folder(folder: Path) -> Path:
     """Create ``folder`` (taken lexically: only the folders it needs) if
     missing; refuse one that is a file or not writable."""
-    from ._atomic import lexical
+    from .output._atomic import lexical
 
     folder = lexical(folder)
     if folder.exists() and not folder.is_dir():
@@ -76,7 +76,7 @@ def _output_folder(folder: Path) -> Path:
 def _check_name(out: Path, given: Path) -> None:
     """Refuse an output whose file name is longer than the file system takes
     (``given``: ``out`` as written, for the message)."""
-    from ._atomic import check_name
+    from .output._atomic import check_name
 
     try:
         check_name(out, "output")
@@ -90,8 +90,8 @@ def check_output(path: str | os.PathLike[str]) -> Path:
     it), a name the file system takes, not a folder, its folder existing
     (created if missing) and writable.  The path is taken lexically
     (``..`` resolved as text).  Raises :class:`InputError`."""
-    from ._atomic import lexical
-    from .backends import get_backend
+    from .output._atomic import lexical
+    from .output.backends import get_backend
     from .plugins import PluginError
 
     given, out = Path(path), lexical(path)
@@ -141,7 +141,7 @@ def check_outputs(
     """Check the outputs of one rendering before any work: none is the scene
     file, none is given twice, and each passes :func:`check_output`.
     Raises :class:`InputError`."""
-    from ._atomic import lexical
+    from .output._atomic import lexical
 
     given = [Path(o) for o in outputs]  # for messages: as written
     outs = [lexical(o) for o in outputs]
@@ -178,7 +178,7 @@ def _render(args: argparse.Namespace) -> int:
     outs = check_outputs(args.scene, args.output or [Path(args.scene).with_suffix(".pdf")])
     for name in ("width", "height"):  # physical sizes: checked before rendering
         if getattr(args, name, None) is not None:
-            from .units import length_pt
+            from .output.units import length_pt
 
             try:
                 length_pt(getattr(args, name), name)
@@ -204,10 +204,10 @@ def _render(args: argparse.Namespace) -> int:
 
 
 def _animate(args: argparse.Namespace) -> int:
-    from ._atomic import lexical
-    from .animation import ExecutorError, animate
-    from .frame_writers import ANIMATION_SUFFIXES
-    from .projectors import CentralProjector, orbit
+    from .animation.frames import ExecutorError, animate
+    from .animation.writers import ANIMATION_SUFFIXES
+    from .output._atomic import lexical
+    from .scene.projectors import CentralProjector, orbit
     from .scenefile import SceneFileError, load_scene_file
 
     given = Path(args.output or Path(args.scene).with_suffix(".gif"))
@@ -280,7 +280,7 @@ def _positive_int(text: str) -> int:
 
 def _suffixes() -> str:
     try:
-        from .backends import backend_suffixes
+        from .output.backends import backend_suffixes
 
         return ", ".join(backend_suffixes())
     except Exception:  # noqa: BLE001 - help must print whatever a plugin does
@@ -398,7 +398,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     from contextlib import nullcontext
 
-    from ._atomic import Terminated, signals_as_exception
+    from .output._atomic import Terminated, signals_as_exception
     from .plugins import PluginError
 
     prefix = f"lgraph {args.command}: error:"
@@ -450,7 +450,7 @@ def _plugin_exit(exc: SystemExit) -> Exception | None:
     """A ``PluginError`` naming the plugin whose code raised ``exc`` (the
     innermost frame of its traceback in a loaded plugin's module), or None:
     a plugin must not end lgraph."""
-    from ._atomic import exit_message
+    from .output._atomic import exit_message
     from .plugins import PluginError, installed_plugins
 
     with warnings.catch_warnings():

@@ -109,7 +109,7 @@ class Curve:
         >>> c(np.array([np.pi])).round(12).tolist()
         [[-1.0, 0.0, 0.5]]
         """
-        from .formula_maps import constant_range, map_orders
+        from .formula.maps import constant_range, map_orders
 
         f, f1, f2 = map_orders((x, y, z), ("t",), constants)
         t0, t1 = constant_range(t, f.constants, "Curve.from_formulas: t")

@@ -44,7 +44,7 @@ import warnings
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from ._atomic import no_exit
+from .output._atomic import no_exit
 
 __all__ = [
     "GROUPS",
@@ -253,7 +253,7 @@ def _normalize(kind: str, name: str) -> str:
 def _reset() -> None:
     """Forget discovered plugins and what they registered (for tests)."""
     from . import families
-    from ._backend_table import BACKENDS as _BACKENDS
+    from .output._backend_table import BACKENDS as _BACKENDS
 
     with _lock:
         for info in _plugins.get("family", {}).values():
@@ -381,7 +381,7 @@ class _LazyBackend:
 
     def load_writer(self) -> Any:
         """Import the plugin's writer (and register it in place of this stub)."""
-        from ._backend_table import BACKENDS as _BACKENDS
+        from .output._backend_table import BACKENDS as _BACKENDS
 
         writer = self.info.load()
         if not isinstance(writer, _BrokenPlugin) and _BACKENDS.get(self.suffix) is self:
@@ -398,11 +398,11 @@ class _LazyBackend:
 def load_backends() -> None:
     """Register plugin backends (``lgraph.backends`` entry points) by suffix.
 
-    Called by :func:`lgraph.backends.get_backend` for a suffix it does not
+    Called by :func:`lgraph.output.backends.get_backend` for a suffix it does not
     know; scans the entry points once and imports nothing until a plugin
     backend is first used.
     """
-    from ._backend_table import BACKENDS as _BACKENDS
+    from .output._backend_table import BACKENDS as _BACKENDS
 
     with _lock:
         first = "backend" not in _plugins
@@ -450,7 +450,7 @@ def describe_plugins() -> str:
     >>> text.splitlines()[-1]
     'built-in: ... surfaces, ... line families, ... backends'
     """
-    from ._backend_table import BACKENDS as _BACKENDS
+    from .output._backend_table import BACKENDS as _BACKENDS
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PluginWarning)  # the status column says it

@@ -1,5 +1,5 @@
 """Measuring written curves against the exact ones on the page, independently
-of :mod:`lgraph.bezier` (used by tests/test_figures_bezier.py and
+of :mod:`lgraph.output.bezier` (used by tests/test_figures_bezier.py and
 benchmarks/bench_bezier.py)."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import lgraph as lg
 
 def exact(stroke: lg.Stroke, t: np.ndarray, scale: float, offset) -> np.ndarray:
     """The stroke's exact curve on the page at parameters ``t`` (from its
-    batch, the node's transform and the projector, not from lgraph.bezier)."""
+    batch, the node's transform and the projector, not from lgraph.output.bezier)."""
     c = stroke.curve
     tt = np.where(c.closed & (t > c.t1), t - (c.t1 - c.t0), t)
     x, _ = c.batch.evaluate(np.full(len(tt), c.index), tt)

@@ -1,10 +1,10 @@
 """The straightforward raster frame, for tests and benchmarks: how
-``lgraph.backends.png.render_image`` and the GIF frames of
-``lgraph.frame_writers`` drew and encoded a frame before they were made
+``lgraph.output.backends.png.render_image`` and the GIF frames of
+``lgraph.animation.writers`` drew and encoded a frame before they were made
 cheaper (whole supersampled canvas, each run transformed and handed to pillow
 on its own as Python floats, the whole canvas box-reduced; the whole frame
 inverted through a copy and encoded; lines 2 px wide with the L-shaped pen
-of ``lgraph.backends._pen`` drawn line by line).  The fast code
+of ``lgraph.output.backends._pen`` drawn line by line).  The fast code
 must give the same pixels.
 """
 
@@ -16,9 +16,14 @@ import math
 import numpy as np
 from PIL import Image, ImageDraw
 
-from lgraph.backends._common import background_rgb, page_runs
-from lgraph.backends.png import MAX_SUPERSAMPLED_PIXELS, _disc_vertices, _image_size, _is_gray
-from lgraph.dashes import dash_polyline
+from lgraph.output.backends._common import background_rgb, page_runs
+from lgraph.output.backends.png import (
+    MAX_SUPERSAMPLED_PIXELS,
+    _disc_vertices,
+    _image_size,
+    _is_gray,
+)
+from lgraph.output.dashes import dash_polyline
 
 _INVERT = [255 - g for g in range(256)]
 _DESCENDING_GREYS = bytes(c for g in range(255, -1, -1) for c in (g, g, g))
@@ -80,7 +85,7 @@ def render_image(drawing, *, dpi=150, size=None, supersample=3, gray=False):
             continue
         draw_polyline(draw, px, ink, lw)
     if getattr(drawing, "labels", ()):
-        from lgraph.backends._labels import png_labels
+        from lgraph.output.backends._labels import png_labels
 
         png_labels(img, drawing, mat, off, mode == "RGBA")
     if ss > 1:

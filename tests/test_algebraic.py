@@ -11,8 +11,8 @@ import pytest
 
 import lgraph as lg
 from lgraph.formula import formula
-from lgraph.surfaces._bernstein import count_roots
-from lgraph.surfaces._polynomial import Polynomial
+from lgraph.surfaces.implicit._bernstein import count_roots
+from lgraph.surfaces.implicit._polynomial import Polynomial
 
 
 # -- the polynomial ------------------------------------------------------------

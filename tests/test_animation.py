@@ -13,9 +13,9 @@ import pytest
 from PIL import Image
 
 import lgraph as lg
-from lgraph import animation
+from lgraph.animation import frames as animation
+from lgraph.animation.progress import Progress
 from lgraph.cli import main as cli_main
-from lgraph.progress import Progress
 from lgraph.render import render_views
 
 

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-import lgraph.backends as backends
-from lgraph.drawing import Drawing, Page, Stroke, Style, dash_polyline
+import lgraph.output.backends as backends
+from lgraph.output.drawing import Drawing, Page, Stroke, Style, dash_polyline
 
 SVG_NS = "{http://www.w3.org/2000/svg}"
 FORMATS = ("pdf", "png", "svg")
@@ -213,9 +213,9 @@ class _StubDrawing:
 
 
 def test_nonfinite_points_split_the_stroke(tmp_path: Path) -> None:
-    from lgraph.backends.pdf import write_pdf
-    from lgraph.backends.png import write_png
-    from lgraph.backends.svg import write_svg
+    from lgraph.output.backends.pdf import write_pdf
+    from lgraph.output.backends.png import write_png
+    from lgraph.output.backends.svg import write_svg
 
     d = _StubDrawing(np.array([[10, 10], [20, 10], [np.nan, 0], [30, 10], [40, 10], [50, 10]]))
     write_pdf(d, tmp_path / "fig.pdf", compress=False)

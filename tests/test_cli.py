@@ -79,7 +79,7 @@ def test_gallery_jobs_must_be_at_least_one(jobs, tmp_path, capsys):
 
 
 def test_render_help_lists_the_backend_suffixes(capsys):
-    from lgraph.backends import backend_suffixes
+    from lgraph.output.backends import backend_suffixes
 
     with pytest.raises(SystemExit):
         main(["render", "--help"])

@@ -117,7 +117,7 @@ def _name_groups(text: str) -> dict[str, tuple[int, list[str]]]:
 
 
 def test_plugins_lists_the_names_of_surfaces_families_and_backends(capsys) -> None:
-    from lgraph.backends import backend_suffixes
+    from lgraph.output.backends import backend_suffixes
 
     assert main(["plugins"]) == 0
     out = capsys.readouterr().out
@@ -141,7 +141,7 @@ def test_plugins_lists_the_names_of_surfaces_families_and_backends(capsys) -> No
 
 
 def test_plugins_lists_names_registered_at_run_time(monkeypatch, capsys) -> None:
-    from lgraph._backend_table import BACKENDS
+    from lgraph.output._backend_table import BACKENDS
 
     monkeypatch.setitem(plugins._registered_surfaces, "polish_ball", lg.Sphere)
     monkeypatch.setitem(BACKENDS, ".polish", lambda drawing, path: None)

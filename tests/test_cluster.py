@@ -10,7 +10,7 @@ import pytest
 from PIL import Image
 
 import lgraph as lg
-from lgraph import animation
+from lgraph.animation import frames as animation
 from lgraph.cli import main as cli_main
 
 distributed = pytest.importorskip(

@@ -12,8 +12,8 @@ import pytest
 from PIL import Image
 
 import lgraph as lg
-from lgraph import display
-from lgraph.backends import backend_suffixes
+from lgraph.notebook import display
+from lgraph.output.backends import backend_suffixes
 
 SVG = "{http://www.w3.org/2000/svg}"
 

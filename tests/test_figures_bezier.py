@@ -17,9 +17,9 @@ import pytest
 from page_curves import deviation, flatten
 
 import lgraph as lg
-from lgraph.backends._common import page_runs
-from lgraph.bezier import page_curve_runs
-from lgraph.units import length_pt
+from lgraph.output.backends._common import page_runs
+from lgraph.output.bezier import page_curve_runs
+from lgraph.output.units import length_pt
 
 SVG = "{http://www.w3.org/2000/svg}"
 A0 = "841mm"

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import lgraph as lg
-from lgraph.halos import cut_polylines
+from lgraph.output.halos import cut_polylines
 
 SVG = "{http://www.w3.org/2000/svg}"
 VIEW = lg.ParallelProjector.from_angles(-60, 35)

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import lgraph as lg
-from lgraph.colors import COLORS, CSS_COLORS, parse_color
+from lgraph.scene.colors import COLORS, CSS_COLORS, parse_color
 
 VIEW = lg.ParallelProjector.from_angles(30, 20)
 

@@ -90,7 +90,7 @@ def test_bad_text_option_is_refused(tmp_path: Path):
 
 def test_glyph_styles_follow_the_mathematics():
     pytest.importorskip("matplotlib")
-    from lgraph._text import text_glyphs
+    from lgraph.output._text import text_glyphs
 
     g = text_glyphs(r"$\mathbf{x}_1 + y$ and", 10.0).glyphs
     styles = {c: st for _, _, c, st, _ in g if c.strip()}

@@ -9,8 +9,8 @@ import pytest
 from PIL import Image
 
 import lgraph as lg
-from lgraph.backends.png import render_image
-from lgraph.frame_writers import GifWriter
+from lgraph.animation.writers import GifWriter
+from lgraph.output.backends.png import render_image
 
 
 def _drawing(style: lg.Style | None = None) -> lg.Drawing:

@@ -68,7 +68,7 @@ def test_wrap_agrees_with_the_formula_continued(surface):
     if isinstance(surface, lg.MoebiusStrip):
         f = _moebius_natural
     if f is None:  # Boy: numpy function of the sphere's point, defined everywhere
-        from lgraph.surfaces.onesided import _bryant_kusner as f
+        from lgraph.surfaces.classical.onesided import _bryant_kusner as f
     x_cover = np.asarray(f(c[:, 0], c[:, 1]), float)
     np.testing.assert_allclose(surface.points(base), x_cover, atol=1e-12)
 

@@ -27,11 +27,18 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import lgraph as lg
-from lgraph import _text
-from lgraph._text import MAX_LABEL_DEPTH, MAX_LABEL_LENGTH, check_tex, check_text, quote, text_shape
-from lgraph.backends.svg import write_svg
-from lgraph.drawing import Drawing, PlacedLabel, Stroke
-from lgraph.page import Page
+from lgraph.output import _text
+from lgraph.output._text import (
+    MAX_LABEL_DEPTH,
+    MAX_LABEL_LENGTH,
+    check_tex,
+    check_text,
+    quote,
+    text_shape,
+)
+from lgraph.output.backends.svg import write_svg
+from lgraph.output.drawing import Drawing, PlacedLabel, Stroke
+from lgraph.output.page import Page
 from lgraph.scenefile import SceneFileError, load_scene_file
 from lgraph.scenefile._locate import _show
 

@@ -34,10 +34,11 @@ from typing import Any
 import pytest
 
 import lgraph as lg
-from lgraph import animation, plugins
-from lgraph._atomic import Terminated, name_max, signals_as_exception
-from lgraph.animation import ExecutorError
+from lgraph import plugins
+from lgraph.animation import frames as animation
+from lgraph.animation.frames import ExecutorError
 from lgraph.cli import main
+from lgraph.output._atomic import Terminated, name_max, signals_as_exception
 from lgraph.plugins import PluginError, PluginWarning
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -16,7 +16,7 @@ import pytest
 from PIL import Image
 
 import lgraph as lg
-from lgraph._text import MOVETO, segments, text_shape
+from lgraph.output._text import MOVETO, segments, text_shape
 
 PROJECTORS = [
     lg.ParallelProjector(direction=(1.0, -0.6, 0.5)),

@@ -199,7 +199,7 @@ def test_png_stroke_wider_than_the_image_fills_it(tmp_path: Path) -> None:
 
 
 def test_dash_polyline_refuses_absurd_dash_counts() -> None:
-    from lgraph.dashes import dash_polyline
+    from lgraph.output.dashes import dash_polyline
 
     with pytest.raises(ValueError, match="dash_polyline: pattern .* the limit is"):
         dash_polyline(np.array([[0.0, 0.0], [1e3, 0.0]]), (1e-6, 1e-6))
@@ -328,8 +328,8 @@ def test_a_scene_far_from_the_origin_draws_as_at_the_origin(central: bool) -> No
 
 def test_the_limits_page_lists_every_budget_with_its_value() -> None:
     from lgraph import _tolerance as tol
-    from lgraph.backends import png
-    from lgraph.dashes import MAX_DASHES
+    from lgraph.output.backends import png
+    from lgraph.output.dashes import MAX_DASHES
 
     page = (ROOT / "docs" / "limits.rst").read_text(encoding="utf-8")
     values = {

@@ -32,16 +32,16 @@ def test_moved_classes_are_imported_from_their_new_home(name: str) -> None:
 
 #: (old module, name) -> the public object it must still be
 OLD_PATHS = [
-    ("lgraph.drawing", "Drawing"),
-    ("lgraph.drawing", "Stroke"),
-    ("lgraph.drawing", "PlacedLabel"),
-    ("lgraph.drawing", "Page"),
-    ("lgraph.drawing", "Style"),
-    ("lgraph.drawing", "HIDDEN_STYLE"),
-    ("lgraph.objects", "Label"),
-    ("lgraph.objects", "Point"),
-    ("lgraph.objects", "Arrow"),
-    ("lgraph.objects", "Parallelogram"),
+    ("lgraph.output.drawing", "Drawing"),
+    ("lgraph.output.drawing", "Stroke"),
+    ("lgraph.output.drawing", "PlacedLabel"),
+    ("lgraph.output.drawing", "Page"),
+    ("lgraph.output.drawing", "Style"),
+    ("lgraph.output.drawing", "HIDDEN_STYLE"),
+    ("lgraph.scene.objects", "Label"),
+    ("lgraph.scene.objects", "Point"),
+    ("lgraph.scene.objects", "Arrow"),
+    ("lgraph.scene.objects", "Parallelogram"),
     ("lgraph.scenefile", "load_scene_file"),
     ("lgraph.scenefile", "SceneFileError"),
 ]
@@ -53,12 +53,12 @@ def test_old_import_paths_give_the_public_objects(module: str, name: str) -> Non
 
 
 def test_private_paths_that_plugins_backends_and_tests_use() -> None:
-    from lgraph.dashes import MAX_DASHES as max_dashes
-    from lgraph.dashes import dash_polyline as dashes
-    from lgraph.drawing import MAX_DASHES, _page, dash_polyline
-    from lgraph.page import _page as page_converter
+    from lgraph.output.dashes import MAX_DASHES as max_dashes
+    from lgraph.output.dashes import dash_polyline as dashes
+    from lgraph.output.drawing import MAX_DASHES, _page, dash_polyline
+    from lgraph.output.page import _page as page_converter
     from lgraph.scenefile import _OBJECT, _STYLE, _TOP, _Locator, parse_scene
-    from lgraph.surfaces._patch_quadric import _PatchQuadric as base
+    from lgraph.surfaces.quadrics._unbounded import _PatchQuadric as base
 
     assert dash_polyline is dashes and MAX_DASHES == max_dashes and _page is page_converter
     assert issubclass(lgraph.EllipticCone, base) and issubclass(lgraph.HyperbolicCylinder, base)
@@ -67,16 +67,16 @@ def test_private_paths_that_plugins_backends_and_tests_use() -> None:
 
 
 SPLIT = [
-    "drawing.py",
-    "page.py",
-    "dashes.py",
-    "objects/__init__.py",
-    "objects/marks.py",
-    "objects/shapes.py",
-    "surfaces/_patch_quadric.py",
-    "surfaces/hyperboloids.py",
-    "surfaces/paraboloids.py",
-    "surfaces/cylinders.py",
+    "output/drawing.py",
+    "output/page.py",
+    "output/dashes.py",
+    "scene/objects/__init__.py",
+    "scene/objects/marks.py",
+    "scene/objects/shapes.py",
+    "surfaces/quadrics/_unbounded.py",
+    "surfaces/quadrics/hyperboloids.py",
+    "surfaces/quadrics/paraboloids.py",
+    "surfaces/quadrics/cylinders.py",
     "scenefile/__init__.py",
     "scenefile/_schema.py",
     "scenefile/_members.py",

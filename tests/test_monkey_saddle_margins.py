@@ -1,4 +1,4 @@
-"""The monkey saddle's transition functions (lgraph/surfaces/_saddle_margins.py)
+"""The monkey saddle's transition functions (lgraph/surfaces/classical/_saddle_margins.py)
 against its exact ray test, and the drawings they produce against the ones
 found by bisection on the ray test alone."""
 
@@ -11,8 +11,8 @@ from scipy.optimize import brentq
 
 import lgraph as lg
 from lgraph._own import CONTOUR, ON
-from lgraph.surfaces._polyroots import real_roots
-from lgraph.surfaces._saddle_margins import _Rays, grazing_function, margins
+from lgraph.surfaces.classical._polyroots import real_roots
+from lgraph.surfaces.classical._saddle_margins import _Rays, grazing_function, margins
 
 SURFACE = lg.MonkeySaddle(extent=1.0, c=0.6)
 NAMES = ["contour", "rim x+", "rim x-", "rim y+", "rim y-", "grazing"]
@@ -157,7 +157,7 @@ def test_drawing_equals_the_bisected_one(hidden_lines: bool) -> None:
 def test_contour_projection_with_analytic_gradient_equals_the_central_difference_one(
     surface,
 ) -> None:
-    from lgraph.surfaces import _numeric_contour as nc
+    from lgraph.surfaces.parametric import _contour as nc
 
     rng = np.random.default_rng(8)
     d = surface.domain
@@ -202,7 +202,7 @@ def test_contour_projection_with_analytic_gradient_equals_the_central_difference
 
 
 def test_surfaces_with_numeric_second_derivatives_keep_central_differences() -> None:
-    from lgraph.surfaces import _numeric_contour as nc
+    from lgraph.surfaces.parametric import _contour as nc
 
     def saddle(u1, u2):
         return np.stack(np.broadcast_arrays(u1, u2, u1 * u2), axis=-1)

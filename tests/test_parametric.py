@@ -8,8 +8,8 @@ import pytest
 
 import lgraph as lg
 from lgraph._own import CONTOUR, ON
-from lgraph.surfaces._numeric_contour import contour
-from lgraph.surfaces._numeric_hits import hits
+from lgraph.surfaces.parametric._contour import contour
+from lgraph.surfaces.parametric._hits import hits
 
 E = lg.Ellipsoid(3, 2, 1)
 PROJECTORS = [

@@ -1,4 +1,4 @@
-"""Plotter-clean drawings (lgraph.plotter): checked by distances on the page,
+"""Plotter-clean drawings (lgraph.output.plotter): checked by distances on the page,
 by exhaustive search for the order, and against the original vertices."""
 
 from __future__ import annotations
@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 import lgraph as lg
-from lgraph.backends._common import finite_runs
-from lgraph.drawing import Drawing, Page, Stroke, Style
 from lgraph.gallery import render_figure
-from lgraph.units import length_pt
+from lgraph.output.backends._common import finite_runs
+from lgraph.output.drawing import Drawing, Page, Stroke, Style
+from lgraph.output.units import length_pt
 
 GALLERY = Path(__file__).resolve().parent.parent / "gallery"
 
@@ -299,7 +299,7 @@ def test_command_line_plotter_flag(tmp_path) -> None:  # noqa: ANN001
 
 
 def test_layers_keep_their_numbers_and_names(tmp_path) -> None:  # noqa: ANN001
-    from lgraph.layers import drawing_layers
+    from lgraph.output.layers import drawing_layers
 
     d = gallery_drawing("extra_hidden_dashed")
     styled = [

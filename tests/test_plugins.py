@@ -16,8 +16,8 @@ import pytest
 
 import lgraph as lg
 from lgraph import plugins
-from lgraph.backends import get_backend
 from lgraph.families import FAMILIES
+from lgraph.output.backends import get_backend
 from lgraph.plugins import PluginError, PluginWarning
 
 GOOD = '''\

@@ -1,4 +1,4 @@
-"""Real roots of many small polynomials at once (lgraph.surfaces._polyroots),
+"""Real roots of many small polynomials at once (lgraph.surfaces.classical._polyroots),
 against numpy's ``np.roots`` one polynomial at a time."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from lgraph.surfaces._polyroots import all_real_roots, real_roots
+from lgraph.surfaces.classical._polyroots import all_real_roots, real_roots
 
 
 def _reference(row: np.ndarray, size: float) -> np.ndarray:

@@ -16,9 +16,9 @@ import raster_reference as ref
 from PIL import Image, ImageDraw
 
 import lgraph as lg
-import lgraph.backends.png as png
-from lgraph.drawing import Drawing, Page, Stroke, Style
-from lgraph.frame_writers import GifWriter
+import lgraph.output.backends.png as png
+from lgraph.animation.writers import GifWriter
+from lgraph.output.drawing import Drawing, Page, Stroke, Style
 
 
 def _same(drawing: Drawing, **options: object) -> None:

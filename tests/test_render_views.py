@@ -125,7 +125,8 @@ def test_a_batch_over_the_point_budget_is_rendered_view_by_view(tmp_path, monkey
     """The budget counts the samples of all views together: ``render_views``
     refuses a batch that one view alone would fit; ``animate`` then renders
     that batch view by view, with the same frames."""
-    from lgraph import _tolerance, animation
+    from lgraph import _tolerance
+    from lgraph.animation import frames as animation
     from lgraph.render.sampling import PointBudgetError
 
     scene = _ellipsoid()
@@ -144,7 +145,7 @@ def test_contours_of_all_views_are_evaluated_in_one_call(monkeypatch):
     """An ellipsoid's exact contour differs in every view, but all of them are
     ellipses evaluated by the surface's one kernel: the renderer stacks their
     parameters and calls it as often for five views as for one."""
-    from lgraph.surfaces import quadrics
+    from lgraph.surfaces.quadrics import quadric as quadrics
 
     calls = []
     real = quadrics._EllipseKernel.__call__

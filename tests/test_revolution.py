@@ -11,7 +11,7 @@ from bruteforce import sign_changes
 
 import lgraph as lg
 from lgraph._own import CONTOUR, ON
-from lgraph.surfaces._revolution_contour import contour_residual
+from lgraph.surfaces.revolution._contour import contour_residual
 
 EGG = lg.SurfaceOfRevolution(lg.named_profile("egg"), (0, np.pi))
 VASE = lg.SurfaceOfRevolution(lg.named_profile("vase"), (0, 3.0))

@@ -1,5 +1,5 @@
 """The ray test of surfaces of revolution with monotone heights
-(``lgraph/surfaces/_revolution_fast.py``): one run of grid cells per ray,
+(``lgraph/surfaces/revolution/_fast.py``): one run of grid cells per ray,
 pruned by a window of heights, and the transition functions built on it.
 
 Independent checks: the general scan of ring-bounded blocks (``general=True``)
@@ -16,8 +16,8 @@ import pytest
 
 import lgraph as lg
 from lgraph._own import CONTOUR, OFF, ON
-from lgraph.surfaces import _revolution_hits
-from lgraph.surfaces._revolution_fast import monotone_tables
+from lgraph.surfaces.revolution import _hits as _revolution_hits
+from lgraph.surfaces.revolution._fast import monotone_tables
 
 PSEUDO = lg.Pseudosphere(1.0, 3.0)
 VASE = lg.SurfaceOfRevolution("vase", (0, 3.0))
@@ -93,7 +93,7 @@ def test_the_profiles_take_the_fast_path(name):
     rng = np.random.default_rng(1)
     lo = rng.integers(0, 256, 500)
     hi = np.minimum(lo + rng.integers(0, 256, 500), 255)
-    from lgraph.surfaces._revolution_fast import _range_max
+    from lgraph.surfaces.revolution._fast import _range_max
 
     ref = np.array([tab["bound"][0, a : b + 1].max() for a, b in zip(lo, hi)])
     assert np.array_equal(_range_max(tab["bound"], lo, hi), ref)
@@ -115,7 +115,7 @@ def test_fast_ray_test_agrees_with_the_general_one_and_a_dense_scan(name):
     a = s.frame[2]
     h = o @ a
     r = np.linalg.norm(o - h[:, None] * a, axis=1)
-    from lgraph.surfaces._revolution_convex import t_of_points
+    from lgraph.surfaces.revolution._convex import t_of_points
 
     t = t_of_points(s, h[on], r[on])
     phi = np.arctan2(o[on] @ s.frame[1], o[on] @ s.frame[0])

@@ -20,9 +20,9 @@ from bruteforce import even_stations, sign_changes
 
 import lgraph as lg
 from lgraph._own import ON
-from lgraph.surfaces import _revolution_hits
-from lgraph.surfaces._revolution_contour import view_terms
-from lgraph.surfaces._revolution_convex import t_of_points
+from lgraph.surfaces.revolution import _hits as _revolution_hits
+from lgraph.surfaces.revolution._contour import view_terms
+from lgraph.surfaces.revolution._convex import t_of_points
 
 EGG = lg.SurfaceOfRevolution("egg", (0, np.pi))
 PSEUDO = lg.Pseudosphere(1.0, 3.0)
@@ -201,7 +201,7 @@ def test_grazing_function_changes_sign_where_the_ray_test_does(name):
 def test_the_ray_test_shortcut_has_the_sign_of_the_exact_margin():
     # the ray test takes t from the height grid unless the margin there is within
     # the cell's bound of zero; points near the contour must take the exact path
-    from lgraph.surfaces._revolution_convex import margin
+    from lgraph.surfaces.revolution._convex import margin
 
     p = PROJECTORS["central"]
     central, wa, r0, psi0 = view_terms(EGG, p)

@@ -9,7 +9,7 @@ import pytest
 
 import lgraph as lg
 from lgraph._roots import bracketed_roots
-from lgraph.surfaces._zero_set import _edge_roots, zero_set
+from lgraph.surfaces.parametric._zero_set import _edge_roots, zero_set
 
 EPS = np.finfo(float).eps
 

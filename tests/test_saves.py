@@ -55,7 +55,7 @@ def test_a_signal_during_a_save_leaves_no_temporary_file(tmp_path: Path, signum:
 
 
 def test_save_errors_name_the_target_path(tmp_path: Path, monkeypatch) -> None:
-    from lgraph import backends
+    from lgraph.output import backends
 
     def write_denied(drawing, path, **options):
         raise PermissionError(13, "Permission denied", str(path))

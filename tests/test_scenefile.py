@@ -329,7 +329,7 @@ def test_lgraph_render_writes_the_figure(tmp_path):
 def test_save_options_of_a_registered_backend_are_checked_and_passed(tmp_path, monkeypatch):
     """Backend writers declare their options (keyword parameters, or an
     ``lgraph_options`` dict); ``[save]`` is checked against them and passed on."""
-    from lgraph import backends
+    from lgraph.output import backends
 
     got = {}
 
@@ -396,7 +396,7 @@ def test_tikz_plugin_options_pass_from_save(tmp_path, monkeypatch):
     """The example TikZ plugin declares ``standalone`` as a keyword parameter;
     ``[save] standalone = true`` reaches it (registered here by hand, as its
     entry point would)."""
-    from lgraph import backends
+    from lgraph.output import backends
 
     monkeypatch.syspath_prepend(
         str(Path(__file__).resolve().parents[1] / "plugins/lgraph-tikz/src")

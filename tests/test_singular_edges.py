@@ -21,7 +21,7 @@ import pytest
 from bruteforce import MeshCaster, even_stations
 
 import lgraph as lg
-from lgraph.surfaces._singular_edges import singular_curves
+from lgraph.surfaces.parametric._singular_edges import singular_curves
 
 
 def _stack(*c):

@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 import lgraph as lg
-from lgraph.backends._common import finite_runs
-from lgraph.drawing import Drawing, Page, Stroke, Style
 from lgraph.gallery import render_figure
-from lgraph.layers import drawing_layers
-from lgraph.units import length_pt
+from lgraph.output.backends._common import finite_runs
+from lgraph.output.drawing import Drawing, Page, Stroke, Style
+from lgraph.output.layers import drawing_layers
+from lgraph.output.units import length_pt
 
 SVG = "{http://www.w3.org/2000/svg}"
 INK = "{http://www.inkscape.org/namespaces/inkscape}"

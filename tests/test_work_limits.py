@@ -105,7 +105,7 @@ def test_the_traced_function_is_evaluated_in_bounded_chunks() -> None:
     """On a fine grid the function sees at most LEVEL_CHUNK_NODES nodes at
     once (its working memory stays bounded); the lines are those of one call."""
     from lgraph.families.level import _on_grid
-    from lgraph.surfaces._zero_set import grid_parameters
+    from lgraph.surfaces.parametric._zero_set import grid_parameters
 
     torus = lg.Torus(2, 0.8)
     sizes = []

@@ -1,4 +1,4 @@
-"""Zero sets skip the sign changes that are jumps (lgraph.surfaces._zero_set).
+"""Zero sets skip the sign changes that are jumps (lgraph.surfaces.parametric._zero_set).
 
 The contour function of a parametrization that folds over a degenerate line
 (the normal flips with the orientation) changes sign there without a zero:
@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 import lgraph as lg
-from lgraph.surfaces._zero_set import zero_set
+from lgraph.surfaces.parametric._zero_set import zero_set
 
 
 def _surface():

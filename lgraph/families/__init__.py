@@ -23,7 +23,7 @@ from ..curves import CurveBatch
 SPACINGS = ("complete", "even")
 
 if TYPE_CHECKING:
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
     from ..surfaces._base import Surface
 
 __all__ = [

@@ -15,7 +15,7 @@ from ..surfaces._base import Surface
 from . import SPACINGS, Family, register_family
 
 if TYPE_CHECKING:
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
 
 __all__ = ["AsymptoticLines"]
 

@@ -54,8 +54,8 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
-    from ..projectors import Projector
-    from ..scene import Node
+    from ..scene.graph import Node
+    from ..scene.projectors import Projector
     from . import Family
 
 __all__ = [

@@ -23,7 +23,7 @@ from ..surfaces._base import Surface
 from . import Family
 
 if TYPE_CHECKING:
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
 
 __all__ = ["Geodesic", "geodesic"]
 

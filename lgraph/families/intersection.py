@@ -14,7 +14,7 @@ from ..surfaces._base import Domain, Surface
 from . import Family
 
 if TYPE_CHECKING:
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
 
 __all__ = ["IntersectionCurve", "intersection_curves"]
 

@@ -7,9 +7,9 @@ parameter plane: marching squares on a parameter grid, every crossing refined
 on its grid edge to machine precision, joined into curves (closed where they
 close, also across periodic seams) and projected back onto ``f = value`` by
 Newton's method wherever the renderer evaluates them
-(:func:`lgraph.surfaces._zero_set.zero_set`).  Where the class knows the
+(:func:`lgraph.surfaces.parametric._zero_set.zero_set`).  Where the class knows the
 section exactly it is used instead: plane sections of quadrics are conics
-(:func:`lgraph.surfaces._conic.plane_section`), and a surface offering
+(:func:`lgraph.surfaces.quadrics._conic.plane_section`), and a surface offering
 ``level_lines(direction, values)`` (a surface of revolution cut across its
 axis: parallels) answers itself.
 
@@ -38,7 +38,7 @@ from . import Family, register_family
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
     from ..surfaces._base import Surface
 
 __all__ = ["LevelLines", "NAMED_FUNCTIONS", "surface_function", "level_batches"]
@@ -262,8 +262,8 @@ def level_batches(
     ``grid`` at most ``MAX_LEVEL_GRID``, the values times ``(grid - 1)**2`` at
     most ``MAX_LEVEL_CELLS``); ``f`` is evaluated on the grid in chunks of
     rows of at most ``LEVEL_CHUNK_NODES`` nodes (one call on grids up to 256)."""
-    from ..surfaces._numeric_contour import project_to_zero, zero_set_batch
-    from ..surfaces._zero_set import grid_parameters, zero_set
+    from ..surfaces.parametric._contour import project_to_zero, zero_set_batch
+    from ..surfaces.parametric._zero_set import grid_parameters, zero_set
 
     values = np.atleast_1d(np.asarray(values, float)).ravel()
     grid = check_levels("level_batches", len(values), grid)
@@ -308,10 +308,10 @@ def _exact_sections(surface: Surface, direction: np.ndarray, values: np.ndarray)
         res = own(d, values)
         if res is not None:
             return res
-    from ..surfaces.quadrics import Quadric
+    from ..surfaces.quadrics.quadric import Quadric
 
     if isinstance(surface, Quadric):
-        from ..surfaces._conic import plane_section
+        from ..surfaces.quadrics._conic import plane_section
 
         out = []
         for value in values.tolist():

@@ -37,7 +37,7 @@ from . import Family, parameter_line_batches, register_family
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
     from ..surfaces._base import Surface
 
 __all__ = ["ParabolicLines"]
@@ -49,7 +49,7 @@ def _circles_u2(surface: Surface) -> list[CurveBatch]:
 
 
 def _closed_form(surface: Surface) -> Any:
-    from ..surfaces.quartic import DupinCyclide, Torus
+    from ..surfaces.classical.quartic import DupinCyclide, Torus
 
     if isinstance(surface, (Torus, DupinCyclide)):
         return _circles_u2

@@ -5,7 +5,7 @@ A point of self-intersection has two parameter pairs, ``x(a) = x(b)`` with
 
 1. **Candidates**: the padded boxes of the surface's parameter-grid patches
    (the hierarchy the numeric ray test uses,
-   :mod:`lgraph.surfaces._numeric_boxes`) are intersected with each other level by
+   :mod:`lgraph.surfaces.parametric._boxes`) are intersected with each other level by
    level; overlapping leaf pairs that are not neighbours in the parameter
    plane (periodic seams included) may hold a piece of the curve.
 2. **Crossings**: the curve's preimage crosses the edges of the patches.  On
@@ -48,7 +48,7 @@ from ..curves import CurveBatch
 from . import Family, register_family
 
 if TYPE_CHECKING:
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
     from ..surfaces._base import Surface
 
 __all__ = ["SelfIntersection", "self_intersection_points"]
@@ -77,7 +77,7 @@ ACCEPT_RTOL = 1e-11
 def _leaf_pairs(surface: Surface) -> tuple[np.ndarray, np.ndarray, int]:
     """Index pairs ``(p, q)`` (flat, ``p < q``) of overlapping leaves more than
     ``NEAR_CELLS`` apart."""
-    from ..surfaces._numeric_boxes import _hierarchy
+    from ..surfaces.parametric._boxes import _hierarchy
 
     H = _hierarchy(surface)
     n = H.n

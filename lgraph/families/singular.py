@@ -5,7 +5,7 @@ empty); it gives point marks instead (:meth:`Singularities.marks`), which
 the scene places and hides like every :class:`~lgraph.Point` (the node's
 transform moves them).  The points come from the surface's
 ``singular_points()``: for an :class:`~lgraph.AlgebraicSurface`, its nodes
-found with certainty (:mod:`!lgraph.surfaces._singular`).
+found with certainty (:mod:`!lgraph.surfaces.implicit._singular`).
 
 >>> import lgraph as lg
 >>> len(Singularities().marks(lg.CayleyCubic()))
@@ -27,7 +27,7 @@ from . import Family, register_family
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
     from ..surfaces._base import Surface
 
 __all__ = ["Singularities"]
@@ -49,7 +49,7 @@ class Singularities(Family):
 
     def marks(self, surface: Any) -> list[Any]:
         """The point marks, in the surface's local coordinates."""
-        from ..objects.marks import Point
+        from ..scene.objects.marks import Point
 
         find = getattr(surface, "singular_points", None)
         if find is None:

@@ -37,11 +37,11 @@ import numpy as np
 
 from .. import _tolerance as tol
 from .._validate import as_number, positive_finite
-from ..drawing import Drawing, Stroke
 from ..geometry.transforms import Transform
-from ..page import Page, _page
-from ..projectors import CentralProjector, ParallelProjector, Projector
-from ..style import OUTLINE, HiddenStyle, Style, hidden_style_rule
+from ..output.drawing import Drawing, Stroke
+from ..output.page import Page, _page
+from ..scene.projectors import CentralProjector, ParallelProjector, Projector
+from ..scene.style import OUTLINE, HiddenStyle, Style, hidden_style_rule
 from .crossings import seed_net_crossings
 from .depth import occlusion_depth
 from .flips import locate_flips, seed_crossings
@@ -54,7 +54,7 @@ from .twins import twin_groups
 from .views import Views
 
 if TYPE_CHECKING:
-    from ..scene import Node, Scene
+    from ..scene.graph import Node, Scene
 
 __all__ = ["render", "render_views", "local_projector"]
 

@@ -21,7 +21,7 @@ import attrs
 import numpy as np
 
 from .. import _tolerance as tol
-from ..projectors import CentralProjector, Projector
+from ..scene.projectors import CentralProjector, Projector
 from ..surfaces._base import ON
 from .occlusion import Occlusion
 from .sampling import Samples, merge

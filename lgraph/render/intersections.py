@@ -42,8 +42,8 @@ from ..surfaces._base import Domain, Surface
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
-    from ..projectors import Projector
-    from ..scene import Node
+    from ..scene.graph import Node
+    from ..scene.projectors import Projector
 
 __all__ = ["Meeting", "Placed", "intersection_batches", "meeting_pairs"]
 

@@ -18,9 +18,9 @@ from typing import Any
 import numpy as np
 
 from .._own import OFF
-from ..drawing import PlacedLabel, Stroke
-from ..projectors import CentralProjector, Projector
-from ..style import Style
+from ..output.drawing import PlacedLabel, Stroke
+from ..scene.projectors import CentralProjector, Projector
+from ..scene.style import Style
 
 __all__ = ["place_marks", "auto_anchor"]
 

@@ -9,20 +9,16 @@ import numpy as np
 
 from .. import _tolerance as tol
 from ..geometry.vectors import box_corners, dot
-from ..projectors import CentralProjector, Projector
+from ..scene.projectors import CentralProjector, Projector
 from ..surfaces._base import CONTOUR, OFF
-from ..surfaces._quadric_ray import (
-    quadric_coefficients_world,
-    quadric_outlines,
-    quadric_ray_hits,
-)
-from ..surfaces.quadrics import Quadric
+from ..surfaces.quadrics._ray import quadric_coefficients_world, quadric_outlines, quadric_ray_hits
+from ..surfaces.quadrics.quadric import Quadric
 from .boxes import BoxGrid
 from .twins import lies_on, twin_groups
 from .views import Views, as_views
 
 if TYPE_CHECKING:
-    from ..scene import Node
+    from ..scene.graph import Node
 
 __all__ = ["NotBatchable", "Occlusion"]
 
@@ -176,7 +172,7 @@ class Occlusion:
         one conic ``(nq, 3, 3)`` each, ``[x, y, 1] C [x, y, 1]^T`` positive
         exactly inside the outline (the image of the ellipsoid), zero on it
         (the image of its contour); NaN for quadrics that are not
-        ellipsoids (:func:`~lgraph.surfaces._quadric_ray.quadric_outlines`).
+        ellipsoids (:func:`~lgraph.surfaces.quadrics._ray.quadric_outlines`).
         Image coordinates relative to :meth:`image_origin` (a scene far
         from the origin keeps its digits)."""
         if k not in self._outline_cache:

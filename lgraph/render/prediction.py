@@ -1,6 +1,6 @@
 """The cost of the ray tests, predicted before they run (issue #25, part 5).
 
-The numeric ray test of a parametrized surface (:mod:`lgraph.surfaces._numeric_hits`)
+The numeric ray test of a parametrized surface (:mod:`lgraph.surfaces.parametric._hits`)
 starts Newton's method in every patch box a ray meets; its cost grows with
 the samples tested times the boxes each ray meets (a surface that oscillates
 or winds over itself meets dozens a ray, an ordinary one a few).  Before the
@@ -21,7 +21,7 @@ import numpy as np
 
 from .. import _tolerance as tol
 from ..surfaces._base import Surface
-from ..surfaces._numeric_boxes import set_meter
+from ..surfaces.parametric._boxes import set_meter
 
 __all__ = ["RayBudgetError", "RayMeter", "probe_ray_tests"]
 

@@ -16,7 +16,7 @@ import numpy as np
 from .. import _tolerance as tol
 from ..families import cache as family_cache
 from ..geometry.transforms import Transform
-from ..projectors import Projector
+from ..scene.projectors import Projector
 from ..surfaces._base import OFF
 from .views import Views, as_views, runs
 

@@ -9,13 +9,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..bezier import CurveRef, unwrapped
-from ..drawing import Stroke
-from ..style import Style
+from ..output.bezier import CurveRef, unwrapped
+from ..output.drawing import Stroke
+from ..scene.style import Style
 from .sampling import Samples
 
 if TYPE_CHECKING:
-    from ..scene import Node
+    from ..scene.graph import Node
 
 __all__ = ["run_strokes"]
 
@@ -129,7 +129,7 @@ def run_strokes(
             style = styles.get(key)
             if style is None:
                 style = styles[key] = batch.style or nodes[node].style_for(family)
-        # the exact curve of the stroke (lgraph.bezier: curves="bezier" output)
+        # the exact curve of the stroke (lgraph.output.bezier: curves="bezier" output)
         curve = CurveRef(batch, c - first_id, transform, projectors[v], tus[k], t0, t1, closed)
         out[v].append(
             Stroke(

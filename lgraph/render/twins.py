@@ -10,7 +10,7 @@ import numpy as np
 from .. import _tolerance as tol
 
 if TYPE_CHECKING:
-    from ..scene import Node
+    from ..scene.graph import Node
     from ..surfaces._base import Surface
 
 __all__ = ["lies_on", "twin_groups"]

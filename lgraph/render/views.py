@@ -18,7 +18,7 @@ from collections.abc import Iterator, Sequence
 
 import numpy as np
 
-from ..projectors import CentralProjector, Projector, unit_rays
+from ..scene.projectors import CentralProjector, Projector, unit_rays
 
 __all__ = ["Views", "as_views", "runs"]
 
@@ -136,7 +136,7 @@ def _rows(table: np.ndarray, view: np.ndarray) -> np.ndarray:
 
 def _linear_map_rows(xyz: np.ndarray, m: np.ndarray, view: np.ndarray, k: int) -> np.ndarray:
     """``linear_map(xyz[i], m[view[i]])`` for every row (``m``: ``(views, 3,
-    k)``), term by term as :func:`lgraph.projectors.linear_map` does, so
+    k)``), term by term as :func:`lgraph.scene.projectors.linear_map` does, so
     that each row gets the bits of its view alone."""
     x, y, z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
     out = np.empty((len(xyz), k))

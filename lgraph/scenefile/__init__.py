@@ -105,7 +105,7 @@ table           keys
                 default true: draw where surfaces cut each other).  Optional.
 ``save``        ``width``, ``height`` (a physical size such as ``"8.5cm"``, any format)
                 and the options of the output's backend (see
-                :func:`lgraph.backends.backend_options`).  Optional.
+                :func:`lgraph.output.backends.backend_options`).  Optional.
 ``constants``   names and their values: numbers or formulas of the constants above
                 (the formulas' variables ``u v t x y z``, the functions, ``pi`` and
                 ``e`` are no names).  Optional.

@@ -122,9 +122,9 @@ def parametric_surface(key: Key, obj: Mapping[str, Any]) -> Any:
 def algebraic_surface(key: Key, obj: Mapping[str, Any]) -> Any:
     """``surface = "algebraic"``: the polynomial ``F`` (a formula of ``x, y, z``
     and the constants; degree at most 12, expanded by
-    :mod:`lgraph.surfaces._polynomial`) clipped by the ball ``radius`` (about
+    :mod:`lgraph.surfaces.implicit._polynomial`) clipped by the ball ``radius`` (about
     ``center``) or the box ``bounds = [[x0, x1], [y0, y1], [z0, z1]]``."""
-    from ..surfaces.algebraic import AlgebraicSurface
+    from ..surfaces.implicit.algebraic import AlgebraicSurface
 
     (text,) = _texts(key, obj, ("F",), ("x", "y", "z"))
     kw: dict[str, Any] = {"polynomial": text}
@@ -165,8 +165,8 @@ def revolution_surface(key: Key, obj: Mapping[str, Any]) -> Any:
     """``surface = "revolution"``: the profile ``rho, z`` (formulas of ``t``)
     over the range ``t``, turned about ``axis`` (3 numbers, default z) by
     ``angle`` (a range, default a full turn)."""
-    from ..surfaces.profiles import Profile
     from ..surfaces.revolution import SurfaceOfRevolution
+    from ..surfaces.revolution.profiles import Profile
 
     rho, z = _texts(key, obj, ("rho", "z"), ("t",))
     t = _range(key + ("t",), _required(key, obj, "t"))
@@ -203,7 +203,7 @@ def curve(key: Key, table: Mapping[str, Any]) -> tuple[Any, dict[str, Any]]:
 def level_function(key: Key, text: str, argument: Any) -> Any:
     """``function = "x^2 - y^2"`` of ``LevelLines``: a formula of ``x, y, z``
     (or of ``u, v`` with ``argument = "uv"``)."""
-    from ..formula_maps import formula_function
+    from ..formula.maps import formula_function
 
     variables = ("u", "v") if argument == "uv" else ("x", "y", "z")
     f = _formula(key, text, variables)

@@ -218,7 +218,7 @@ def _show(value: Any, limit: int = SHOW_LENGTH) -> str:
     >>> print(_show([1] * 10**6))
     an array [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, ...] (1000000 items)
     """
-    from .._text import quote
+    from ..output._text import quote
 
     if isinstance(value, str):
         return f"a string {quote(value, limit)}"

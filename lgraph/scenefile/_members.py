@@ -218,7 +218,7 @@ def _halo(key: Key, v: Any) -> bool | float:
 
 
 def _label(key: Key, t: dict[str, Any]) -> Any:
-    from ..objects import Label
+    from ..scene.objects import Label
 
     _only(key, t, _LABEL)
     text = _string(key + ("text",), _required(key, t, "text"))
@@ -242,8 +242,8 @@ def _label(key: Key, t: dict[str, Any]) -> Any:
 
 
 def _point(key: Key, t: dict[str, Any]) -> Any:
-    from ..objects import Point
-    from ..style import Style
+    from ..scene.objects import Point
+    from ..scene.style import Style
 
     _only(key, t, ("at", "size", "color", "always", "halo"))
     kw: dict[str, Any] = {}

@@ -2,7 +2,7 @@
 ``[page]``, ``[render]`` and ``[save]`` tables.
 
 ``[save]`` keys are checked against the options of the backend that writes
-the output's suffix (:func:`lgraph.backends.backend_options`, plugin
+the output's suffix (:func:`lgraph.output.backends.backend_options`, plugin
 backends included); for several outputs at once, against those of all their
 backends (an option only some of them take is ignored for the others, with a
 ``SceneFileWarning`` issued by :func:`lgraph.load_scene_file`).  No formula of
@@ -93,7 +93,7 @@ def _render(key: Key, r: dict[str, Any]) -> dict[str, Any]:
             )
         out["tolerance"] = tol
     if "hidden_style" in r or "max_occlusion" in r:
-        from ..style import HiddenStyles, Style
+        from ..scene.style import HiddenStyles, Style
 
         # one style table, or one per family name ("default" for the rest)
         styles = _styles(key + ("hidden_style",), r.get("hidden_style", {}))
@@ -109,7 +109,7 @@ def _render(key: Key, r: dict[str, Any]) -> dict[str, Any]:
 
 
 def _page(key: Key, p: dict[str, Any]) -> Any:
-    from ..page import Page
+    from ..output.page import Page
 
     _only(key, p, ("preset", "landscape", "width", "height", "margin", "extent"))
     if "preset" in p:
@@ -149,7 +149,7 @@ _SAVE: dict[str, Callable[[Key, Any], Any]] = {
 
 
 def _length(key: Key, v: Any, zero: bool = False) -> float:
-    from ..units import length_pt
+    from ..output.units import length_pt
 
     if isinstance(v, bool) or not isinstance(v, (str, int, float)):
         raise _Invalid(key, f"expected a length such as '8.5cm', got {_show(v)}")
@@ -206,7 +206,7 @@ def _save(
     key: Key, s: dict[str, Any], suffix: str | Sequence[str] = ".pdf"
 ) -> dict[str, Any] | _SaveOutputs:
     """``[save]``: options of the backend that writes ``suffix`` files
-    (:func:`lgraph.backends.backend_options`; plugin backends included).
+    (:func:`lgraph.output.backends.backend_options`; plugin backends included).
 
     With one suffix (a string) an option its backend does not take is an
     error, and the checked options are returned.  With a sequence of
@@ -220,7 +220,7 @@ def _save(
 
 
 def _save_outputs(key: Key, s: dict[str, Any], suffixes: list[str]) -> _SaveOutputs:
-    from ..backends import backend_options
+    from ..output.backends import backend_options
     from ..plugins import PluginError
 
     known: dict[str, dict[str, Any]] = {}  # lower-case suffix -> option -> default

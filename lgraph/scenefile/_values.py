@@ -182,7 +182,7 @@ _STYLE = ("color", "width", "dash")
 
 
 def _style(key: Key, s: Any) -> Any:
-    from ..style import Style
+    from ..scene.style import Style
 
     s = _table(key, s)
     _only(key, s, _STYLE)

@@ -1,11 +1,11 @@
 """Surface classes."""
 
 from ._base import CONTOUR, OFF, ON, Domain, Surface
-from .confocal import ConfocalQuadric, TripleOrthogonalSystem
-from .cylinders import EllipticCylinder, HyperbolicCylinder, ParabolicCylinder
-from .hyperboloids import EllipticCone, HyperboloidOneSheet, HyperboloidTwoSheets
-from .paraboloids import EllipticParaboloid, HyperbolicParaboloid
-from .quadrics import Ellipsoid, Quadric, Sphere
+from .quadrics.confocal import ConfocalQuadric, TripleOrthogonalSystem
+from .quadrics.cylinders import EllipticCylinder, HyperbolicCylinder, ParabolicCylinder
+from .quadrics.hyperboloids import EllipticCone, HyperboloidOneSheet, HyperboloidTwoSheets
+from .quadrics.paraboloids import EllipticParaboloid, HyperbolicParaboloid
+from .quadrics.quadric import Ellipsoid, Quadric, Sphere
 from .revolution import Pseudosphere, SurfaceOfRevolution
 from .ruled import GeneralCone, GeneralCylinder, RuledSurface, TangentSurface
 

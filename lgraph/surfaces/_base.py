@@ -20,7 +20,7 @@ from ._domain import Domain, domain_flags  # noqa: F401 - domain_flags: re-expor
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
-    from ..projectors import Projector
+    from ..scene.projectors import Projector
 
 __all__ = ["Domain", "Surface", "OFF", "ON", "CONTOUR"]
 
@@ -312,14 +312,14 @@ class Surface:
         like the contour: the parameter lines at the non-periodic, non-pole ends
         of the domain, and, on a surface with the numeric contour, the singular
         curves of its parametrization inside the domain (cuspidal edges; see
-        :mod:`!lgraph.surfaces._singular_edges`).  Surfaces made of several
+        :mod:`!lgraph.surfaces.parametric._singular_edges`).  Surfaces made of several
         pieces override this."""
         from ..families import parameter_line_batches
 
         d = self.domain
         edges = parameter_line_batches(self, d.ends(0), d.ends(1), "boundary", "boundary")
         if type(self).contour is Surface.contour:
-            from ._singular_edges import singular_edge_batches
+            from .parametric._singular_edges import singular_edge_batches
 
             edges = edges + singular_edge_batches(self)
         return edges
@@ -337,9 +337,9 @@ class Surface:
         """Contour curves for ``projector`` (given in this surface's local frame).
 
         Default: numeric (marching squares on ``N . w = 0``, refined by Newton;
-        see :mod:`!lgraph.surfaces._numeric_contour`).
+        see :mod:`!lgraph.surfaces.parametric._contour`).
         """
-        from ._numeric_contour import contour
+        from .parametric._contour import contour
 
         return contour(self, projector)
 
@@ -372,9 +372,9 @@ class Surface:
         Directions need not be unit vectors; ``s`` is measured in their units.
 
         Default: numeric (bounding-box hierarchy + Newton; see
-        :mod:`!lgraph.surfaces._numeric_hits`).
+        :mod:`!lgraph.surfaces.parametric._hits`).
         """
-        from ._numeric_hits import hits
+        from .parametric._hits import hits
 
         return hits(self, origins, directions, smax, own)
 
@@ -392,13 +392,13 @@ class Surface:
 
         Default: for a surface that uses the numeric ray test, the distinct
         roots of every patch box the ray meets (see
-        :mod:`!lgraph.surfaces._numeric_hits`); a class with a ray test of its
+        :mod:`!lgraph.surfaces.parametric._hits`); a class with a ray test of its
         own counts 1 where :meth:`hits` is True (a lower bound: override this
         method to count exactly, as quadrics, tori and planes do).
         """
         if type(self).hits is not Surface.hits:
             return np.asarray(self.hits(origins, directions, smax, own), dtype=np.int64)
-        from ._numeric_hits import hits
+        from .parametric._hits import hits
 
         return hits(self, origins, directions, smax, own, count=True)
 

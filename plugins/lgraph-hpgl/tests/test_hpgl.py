@@ -10,7 +10,7 @@ import pytest
 from lgraph_hpgl import UNITS_PER_PT, write_hpgl
 
 import lgraph as lg
-from lgraph.drawing import Drawing, Page, Stroke, Style
+from lgraph.output.drawing import Drawing, Page, Stroke, Style
 
 
 def parse(text: str) -> list[tuple[int, np.ndarray]]:
@@ -100,7 +100,7 @@ def _installed() -> set[str]:
 def test_registered_as_the_hpgl_backend(tmp_path):
     if "lgraph-hpgl" not in _installed():  # pragma: no cover
         pytest.fail("lgraph-hpgl is not installed: run pip install -e plugins/lgraph-hpgl")
-    from lgraph.backends import backend_suffixes
+    from lgraph.output.backends import backend_suffixes
 
     assert ".hpgl" in backend_suffixes()
     d = Drawing(strokes=(stroke([[0, 0], [1, 1]]),))

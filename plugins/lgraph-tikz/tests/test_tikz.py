@@ -15,9 +15,9 @@ import pytest
 from lgraph_tikz import write_tikz
 
 import lgraph as lg
-from lgraph.drawing import Drawing, Stroke
-from lgraph.layers import drawing_layers
-from lgraph.units import UNITS, length_pt
+from lgraph.output.drawing import Drawing, Stroke
+from lgraph.output.layers import drawing_layers
+from lgraph.output.units import UNITS, length_pt
 
 DRAW = re.compile(r"\\draw\[lgraph/(?P<name>[^\]]*)\] (?P<coords>.*);")
 STYLE = re.compile(r"\\lgraphstyle\{(?P<name>[^}]*)\}\{(?P<opts>.*)\}$", re.M)
@@ -192,7 +192,7 @@ def registered() -> bool:
 def test_registered_as_the_tex_backend(tmp_path: Path) -> None:
     if not registered():
         pytest.skip("lgraph-tikz is not installed: pip install -e plugins/lgraph-tikz")
-    from lgraph.backends import backend_suffixes
+    from lgraph.output.backends import backend_suffixes
 
     assert ".tex" in backend_suffixes()
     d = Drawing(strokes=(stroke([[0, 0], [1, 1]]),))

@@ -13,8 +13,8 @@ import pytest
 from lgraph_tikz import write_tikz
 
 import lgraph as lg
-from lgraph.drawing import Drawing, PlacedLabel, Stroke
-from lgraph.page import Page
+from lgraph.output.drawing import Drawing, PlacedLabel, Stroke
+from lgraph.output.page import Page
 
 
 def _drawing(*texts: str, family: str = "u1") -> Drawing:

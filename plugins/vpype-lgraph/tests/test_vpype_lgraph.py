@@ -16,8 +16,8 @@ vpype_cli = pytest.importorskip("vpype_cli", reason="vpype is not installed (pip
 
 from vpype_lgraph import PX_PER_PT, drawing_to_document, lgraph  # noqa: E402
 
-from lgraph.drawing import dash_polyline  # noqa: E402
-from lgraph.layers import drawing_layers  # noqa: E402
+from lgraph.output.drawing import dash_polyline  # noqa: E402
+from lgraph.output.layers import drawing_layers  # noqa: E402
 from lgraph.scenefile import load_scene_file  # noqa: E402
 
 SCENE = """

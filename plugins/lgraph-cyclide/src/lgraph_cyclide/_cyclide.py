@@ -37,7 +37,7 @@ from lgraph import CurveBatch, Domain, Surface
 from lgraph._own import CONTOUR, ON
 from lgraph._tolerance import SELF_HIT_RTOL
 from lgraph.families import parameter_line_batches
-from lgraph.surfaces._polyroots import has_root_in
+from lgraph.surfaces.classical._polyroots import has_root_in
 
 __all__ = ["DupinCyclide"]
 

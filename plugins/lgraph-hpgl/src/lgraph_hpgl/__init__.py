@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from lgraph.drawing import dash_polyline
+from lgraph.output.drawing import dash_polyline
 
 __all__ = ["write_hpgl", "UNITS_PER_PT"]
 __version__ = "0.1.0"

@@ -6,10 +6,10 @@ Registered through the entry point group ``lgraph.backends`` (see
     drawing.save("figure.tex")                       # \input{figure.tex} in a document
     drawing.save("figure.tex", width="8.5cm")        # scaled to 8.5 cm wide
     drawing.save("figure.tex", standalone=True)      # a complete document of its own
-    drawing.save("figure.tex", curves="bezier")      # exact curves (lgraph.bezier)
+    drawing.save("figure.tex", curves="bezier")      # exact curves (lgraph.output.bezier)
 
 or ``lgraph render fig.toml -o fig.tex``.  Coordinates are in cm.  Every
-layer of the drawing (:mod:`lgraph.layers`: one per family, hidden parts in
+layer of the drawing (:mod:`lgraph.output.layers`: one per family, hidden parts in
 their own) is a named TikZ style, ``lgraph/contour``, ``lgraph/hidden``,
 ``lgraph/u1``, ...; the file declares each one only if the document has not
 (and only inside the picture), so a document restyles all its figures from the
@@ -25,7 +25,7 @@ Label text is untrusted (scene files) and TeX runs it, so every label is
 checked again here, also those of drawings built by hand: no control
 characters, no ``^^`` and no command that reaches files or the shell,
 defines commands or changes how TeX reads text (``\input``, ``\write18``,
-``\catcode``, ``\def``, ``\csname``, ...: ``lgraph._text.check_tex``, which
+``\catcode``, ``\def``, ``\csname``, ...: ``lgraph.output._text.check_tex``, which
 :class:`lgraph.Label` applies when it is made), balanced braces and no ``%``
 (either would end the ``\node`` early).  Document macros (``$\vx_1$``) pass.
 Layer names keep letters, digits and ``._+-`` (others become ``-``).
@@ -57,9 +57,9 @@ from typing import Any
 
 import numpy as np
 
-from lgraph._text import check_tex, quote
-from lgraph.layers import drawing_layers
-from lgraph.units import UNITS, length_pt
+from lgraph.output._text import check_tex, quote
+from lgraph.output.layers import drawing_layers
+from lgraph.output.units import UNITS, length_pt
 
 __all__ = ["write_tikz", "ANCHORS"]
 __version__ = "0.2.0"
@@ -90,7 +90,7 @@ _NOT_NAME = re.compile(r"[^\w.+-]")
 
 def _node_text(text: str) -> str:
     r"""``text`` as the body of a ``\node``: refused (ValueError) when it is
-    not safe TeX (``lgraph._text.check_tex``) or would end the node early
+    not safe TeX (``lgraph.output._text.check_tex``) or would end the node early
     (unbalanced braces, ``%``).
 
     >>> _node_text(r"$\vx_1 = \{u\}$ 50\%")
@@ -232,7 +232,7 @@ def write_tikz(
     curves : "polyline" (default) or "bezier"
         ``"bezier"``: the strokes that know their exact curve are drawn as
         ``.. controls (a) and (b) ..`` cubic segments within ``precision``
-        of it (:mod:`lgraph.bezier`); the others stay polylines.
+        of it (:mod:`lgraph.output.bezier`); the others stay polylines.
 
     Raises
     ------
@@ -262,7 +262,7 @@ def write_tikz(
     pw, ph = drawing.page_size()
     runs = None
     if deviation is not None:
-        from lgraph.bezier import page_curve_runs
+        from lgraph.output.bezier import page_curve_runs
 
         runs = page_curve_runs(drawing, deviation)
     groups = drawing_layers(drawing, layers, runs)

@@ -7,7 +7,7 @@ Registered through the entry point group ``vpype.plugins`` (see
     vpype lgraph --hidden --layers surface fig.toml show
 
 The scene file is rendered by lgraph (exact hidden-line removal) and every
-lgraph layer (:mod:`lgraph.layers`: one per family, hidden parts in their own,
+lgraph layer (:mod:`lgraph.output.layers`: one per family, hidden parts in their own,
 or one per surface) becomes one vpype layer with ``vp_name`` (``"2 contour"``,
 as lgraph's SVG labels it), ``vp_color`` and ``vp_pen_width`` set.  The page
 is lgraph's page (``[page]`` of the scene file), in vpype's units (CSS pixels,
@@ -19,7 +19,7 @@ first: it also removes strokes drawn twice, which vpype's ``linemerge`` keeps.
 :func:`drawing_to_document` does the conversion for a drawing built in Python.
 
 >>> import numpy as np
->>> from lgraph.drawing import Drawing, Page, Stroke
+>>> from lgraph.output.drawing import Drawing, Page, Stroke
 >>> s = Stroke(xy=np.array([[0.0, 0.0], [72.0, 36.0]]), xyz=np.zeros((2, 3)), family="u1")
 >>> doc = drawing_to_document(Drawing(strokes=(s,), page=Page(margin=0, extent=72)))
 >>> doc.page_size, doc.layers[1].property("vp_name")
@@ -36,8 +36,8 @@ import click
 import vpype as vp
 import vpype_cli
 
-from lgraph.drawing import dash_polyline
-from lgraph.layers import drawing_layers
+from lgraph.output.drawing import dash_polyline
+from lgraph.output.layers import drawing_layers
 
 __all__ = ["lgraph", "drawing_to_document", "PX_PER_PT"]
 __version__ = "0.1.0"
