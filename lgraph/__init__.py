@@ -16,6 +16,10 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
+from . import _moved
+
+_moved.install()  # the module paths from before the folders (issue #30) keep working
+
 #: public name -> the module that defines it; imported on first use (PEP 562), so
 #: ``import lgraph`` costs only this table and a script pays for what it uses
 _EXPORTS: dict[str, str] = {
@@ -106,6 +110,8 @@ _EXPORTS: dict[str, str] = {
 def __getattr__(name: str) -> Any:
     module = _EXPORTS.get(name)
     if module is None:
+        if f"{__name__}.{name}" in _moved.MOVED:  # lg.backends, lg.drawing: old modules
+            return importlib.import_module(f"{__name__}.{name}")
         raise AttributeError(f"module 'lgraph' has no attribute {name!r}")
     value = getattr(importlib.import_module(module, __name__), name)
     globals()[name] = value  # later look-ups skip this function

@@ -1,6 +1,14 @@
 """Classical parametric surfaces with analytic derivatives: the monkey saddle
 (with an exact cubic ray test), the helicoid, the catenoid and Enneper's
-surface."""
+surface.
+
+Beside them in this folder: ``quartic.py`` the torus and the Dupin cyclide
+(exact quartic ray tests), ``onesided.py`` the one-sided surfaces with glued
+edges (Moebius strip, Klein bottle, Boy's, Roman and cross-cap surfaces),
+``_saddle_margins.py`` the monkey saddle's ray cubic and transition functions,
+``_polyroots.py`` the real roots of many small polynomials at once; all are
+importable from here.
+"""
 
 from __future__ import annotations
 
@@ -16,8 +24,11 @@ from .._base import CONTOUR, ON, Domain, Surface
 from ..parametric import _TWO_PI, _positive, _stack, _uv
 from ._polyroots import all_real_roots
 from ._saddle_margins import RIM_SLACK, margins, ray_cubic
+from .onesided import BoySurface, CrossCap, KleinBottle, MoebiusStrip, RomanSurface
+from .quartic import DupinCyclide, Torus
 
-__all__ = ["MonkeySaddle", "Helicoid", "Catenoid", "Enneper"]
+__all__ = ["MonkeySaddle", "Helicoid", "Catenoid", "Enneper", "Torus", "DupinCyclide"]
+__all__ += ["MoebiusStrip", "KleinBottle", "BoySurface", "RomanSurface", "CrossCap"]
 
 
 @attrs.frozen
