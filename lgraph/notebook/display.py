@@ -1,7 +1,7 @@
 """Drawings in notebooks and other programs: file objects, inline reprs, matplotlib.
 
-* :func:`~lgraph.notebook.display.save_to_fileobj` -- ``drawing.save(fileobj, format="pdf")`` for any
-  binary file object (``io.BytesIO``, a socket's file, an open file);
+* :func:`~lgraph.notebook.display.save_to_fileobj` -- ``drawing.save(fileobj, format="pdf")``
+  for any binary file object (``io.BytesIO``, a socket's file, an open file);
 * :func:`~lgraph.notebook.display.to_bytes` -- the bytes of a drawing in any backend's format
   (what ``_repr_png_`` and ``to_svg`` use);
 * :func:`~lgraph.notebook.display.plot` -- the strokes as matplotlib line collections

@@ -219,7 +219,9 @@ class ConfocalQuadric(Quadric):
         return self._wrap(self.quadric.contour(projector))
 
     def lines_of_curvature(self, n1: int, n2: int) -> list[CurveBatch]:
-        """The standard class's closed forms (:mod:`!lgraph.surfaces.quadrics._curvature`), turned."""
+        """The standard class's closed forms, turned.
+
+        (:mod:`!lgraph.surfaces.quadrics._curvature`)"""
         return self._wrap(self.quadric.lines_of_curvature(n1, n2))
 
     def parameter_lines(self, n1: int, n2: int) -> list[CurveBatch]:

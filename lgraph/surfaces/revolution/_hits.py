@@ -196,8 +196,8 @@ def hits(
 ) -> np.ndarray:
     """Which rays ``origins + s directions``, ``0 < s < smax``, meet the surface
     (``own``: where the origins lie, see :mod:`lgraph._own`).  Rays of a
-    profile with monotone heights go through :func:`~lgraph.surfaces.
-    _revolution_fast.scan`, the others (and all, with ``general=True``: the
+    profile with monotone heights go through
+    :func:`~lgraph.surfaces.revolution._fast.scan`, the others (and all, with ``general=True``: the
     reference for tests) through the scan of ring-bounded blocks."""
     o = np.asarray(origins, dtype=float).reshape(-1, 3)
     v = np.asarray(directions, dtype=float).reshape(-1, 3)

@@ -66,8 +66,9 @@ def _u2_range(owner: str) -> Any:
 
 class _Ruled(_RuledHits, _RuledContour, _RuledCurvature):
     """The machinery shared by all ruled surfaces (not instantiated directly):
-    evaluation and grid (:mod:`~lgraph.surfaces.ruled._geometry`), hits (:mod:`~lgraph.surfaces.ruled._hits`),
-    contour and edges (:mod:`~lgraph.surfaces.ruled._contour`), lines of curvature
+    evaluation and grid (:mod:`~lgraph.surfaces.ruled._geometry`), hits
+    (:mod:`~lgraph.surfaces.ruled._hits`), contour and edges
+    (:mod:`~lgraph.surfaces.ruled._contour`), lines of curvature
     (:mod:`~lgraph.surfaces.ruled._curvature`).
 
     Subclasses supply :meth:`_raw`: the directrix, an (unnormalized) director

@@ -7,8 +7,9 @@ docs/mathematics.rst, "Ruled surfaces, general cylinders and cones"):
 ``z = d/|d|`` and its derivatives from those of the director ``d`` a class
 supplies (:meth:`_RuledGeometry._raw`).
 
-The grid of ``u1`` on which :mod:`~lgraph.surfaces.ruled._hits`, :mod:`~lgraph.surfaces.ruled._contour` and
-:mod:`~lgraph.surfaces.ruled._curvature` scan for sign changes is computed once per surface:
+The grid of ``u1`` on which :mod:`~lgraph.surfaces.ruled._hits`,
+:mod:`~lgraph.surfaces.ruled._contour` and :mod:`~lgraph.surfaces.ruled._curvature` scan
+for sign changes is computed once per surface:
 its nodes are equidistributed in the total turning of ``z`` and of the tangent
 of ``y`` plus the arc length of the patch's ``u2`` edges (about
 ``RULED_CELLS_PER_UNIT`` cells per radian and per patch diameter).  The patch
