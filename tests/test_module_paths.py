@@ -32,16 +32,37 @@ def test_moved_classes_are_imported_from_their_new_home(name: str) -> None:
 
 #: (old module, name) -> the public object it must still be
 OLD_PATHS = [
-    ("lgraph.output.drawing", "Drawing"),
-    ("lgraph.output.drawing", "Stroke"),
-    ("lgraph.output.drawing", "PlacedLabel"),
-    ("lgraph.output.drawing", "Page"),
-    ("lgraph.output.drawing", "Style"),
-    ("lgraph.output.drawing", "HIDDEN_STYLE"),
-    ("lgraph.scene.objects", "Label"),
-    ("lgraph.scene.objects", "Point"),
-    ("lgraph.scene.objects", "Arrow"),
-    ("lgraph.scene.objects", "Parallelogram"),
+    ("lgraph.drawing", "Drawing"),
+    ("lgraph.drawing", "Stroke"),
+    ("lgraph.drawing", "PlacedLabel"),
+    ("lgraph.drawing", "Page"),
+    ("lgraph.drawing", "Style"),
+    ("lgraph.drawing", "HIDDEN_STYLE"),
+    ("lgraph.objects", "Label"),
+    ("lgraph.objects", "Point"),
+    ("lgraph.objects", "Arrow"),
+    ("lgraph.objects", "Parallelogram"),
+    # issue #30: the modules that became packages keep their public names
+    ("lgraph.scene", "Scene"),
+    ("lgraph.scene", "Node"),
+    ("lgraph.scene", "Group"),
+    ("lgraph.animation", "animate"),
+    ("lgraph.notebook", "interact"),
+    ("lgraph.projectors", "orbit"),
+    ("lgraph.surfaces", "Surface"),
+    ("lgraph.surfaces.quadrics", "Ellipsoid"),
+    ("lgraph.surfaces.quadrics", "HyperboloidOneSheet"),
+    ("lgraph.surfaces.hyperboloids", "EllipticCone"),
+    ("lgraph.surfaces.classical", "MonkeySaddle"),
+    ("lgraph.surfaces.classical", "Torus"),
+    ("lgraph.surfaces.quartic", "Torus"),
+    ("lgraph.surfaces.onesided", "KleinBottle"),
+    ("lgraph.surfaces.revolution", "SurfaceOfRevolution"),
+    ("lgraph.surfaces.profiles", "Profile"),
+    ("lgraph.surfaces.ruled", "RuledSurface"),
+    ("lgraph.surfaces.parametric", "ParametricSurface"),
+    ("lgraph.surfaces.implicit", "ImplicitSurface"),
+    ("lgraph.surfaces.algebraic", "AlgebraicSurface"),
     ("lgraph.scenefile", "load_scene_file"),
     ("lgraph.scenefile", "SceneFileError"),
 ]
@@ -50,6 +71,32 @@ OLD_PATHS = [
 @pytest.mark.parametrize(("module", "name"), OLD_PATHS)
 def test_old_import_paths_give_the_public_objects(module: str, name: str) -> None:
     assert getattr(importlib.import_module(module), name) is getattr(lgraph, name)
+
+
+def test_every_old_module_path_is_its_new_module() -> None:
+    """Issue #30 moved modules into folders; each old path imports the new module
+    itself (so ``isinstance``, monkeypatching and plugins' imports agree)."""
+    from lgraph._moved import MOVED
+
+    assert len(MOVED) > 50
+    for old, new in MOVED.items():
+        assert importlib.import_module(old) is importlib.import_module(new), old
+        assert not (PACKAGE.parent / (old.replace(".", "/") + ".py")).exists(), old
+
+
+def test_the_paths_plugins_use() -> None:
+    """``lgraph.surfaces.Surface``, ``lgraph.plugins``, ``lgraph.backends`` and the
+    output modules the example plugins imported before issue #30."""
+    old = {m: importlib.import_module(f"lgraph.{m}") for m in ["backends", "drawing", "units"]}
+    from lgraph.plugins import installed_plugins
+    from lgraph.surfaces import Surface
+
+    assert Surface is lgraph.Surface and callable(installed_plugins)
+    write_pdf = importlib.import_module("lgraph.backends.pdf").write_pdf
+    assert old["backends"].get_backend(".pdf") is write_pdf
+    assert ".svg" in old["backends"].backend_suffixes()
+    assert callable(old["drawing"].dash_polyline) and old["units"].length_pt("1in") == 72
+    assert lgraph.backends is importlib.import_module("lgraph.output.backends")
 
 
 def test_private_paths_that_plugins_backends_and_tests_use() -> None:
