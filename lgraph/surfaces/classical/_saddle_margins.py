@@ -30,15 +30,27 @@ a flip and verifies the result with :meth:`hits`.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
 from ..._own import CONTOUR, ON
 from ..._tolerance import SELF_HIT_RTOL
 
-if TYPE_CHECKING:
-    from . import MonkeySaddle
+
+class Saddle(Protocol):
+    """What the transition functions read of a monkey saddle (a
+    :class:`~lgraph.MonkeySaddle`): its square, its scale and its size."""
+
+    @property
+    def extent(self) -> float: ...
+
+    @property
+    def c(self) -> float: ...
+
+    @property
+    def size(self) -> float: ...
+
 
 __all__ = [
     "RIM_SLACK",
@@ -95,7 +107,7 @@ class _Rays:
     """What every transition function of one batch of rays needs."""
 
     def __init__(
-        self, surface: MonkeySaddle, o: np.ndarray, v: np.ndarray, smax: np.ndarray, own: np.ndarray
+        self, surface: Saddle, o: np.ndarray, v: np.ndarray, smax: np.ndarray, own: np.ndarray
     ) -> None:
         self.o, self.v = o, v
         n = len(o)
@@ -169,7 +181,7 @@ def grazing_function(r: _Rays, own: np.ndarray) -> np.ndarray:
 
 
 def margins(
-    surface: MonkeySaddle,
+    surface: Saddle,
     origins: np.ndarray,
     directions: np.ndarray,
     smax: np.ndarray,
