@@ -12,14 +12,15 @@ point reflected in ``u_j`` for every odd ``k_i`` of a twisted ``u_i``
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Protocol
 
 import attrs
 import numpy as np
+import numpy.typing as npt
 
 from .._validate import interval
 
-__all__ = ["Domain", "domain_flags", "GLUINGS"]
+__all__ = ["Domain", "Parametrized", "domain_flags", "GLUINGS"]
 
 #: the values one entry of ``periodic`` may take
 GLUINGS = (False, True, "twisted")
@@ -316,3 +317,29 @@ class Domain:
         if self.glued[i]:
             return np.empty(0)
         return np.array([e for e, pole in zip(self.range(i), self.poles[i]) if not pole], float)
+
+
+class Parametrized(Protocol):
+    """What the numeric defaults of a surface (``lgraph.surfaces.parametric``'s
+    contour, ray test, boxes and zero sets) need of it: a patch ``x(u1, u2)``
+    over a :class:`Domain`, its derivatives, a box around it and its size.  Every
+    :class:`~lgraph.Surface` is one; the helpers type their argument with this
+    protocol so that they need not import the base class that calls them."""
+
+    @property
+    def domain(self) -> Domain: ...
+
+    def point(self, u1: npt.ArrayLike, u2: npt.ArrayLike) -> np.ndarray: ...
+
+    def derivatives(
+        self, u1: npt.ArrayLike, u2: npt.ArrayLike
+    ) -> tuple[np.ndarray, np.ndarray]: ...
+
+    def second_derivatives(
+        self, u1: npt.ArrayLike, u2: npt.ArrayLike
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]: ...
+
+    @property
+    def size(self) -> float: ...

@@ -19,7 +19,7 @@ from ..._tolerance import HIT_CHUNK_RAYS, HIT_MAX_CANDIDATES
 from .._memo import per_surface
 
 if TYPE_CHECKING:
-    from .._base import Surface
+    from .._domain import Parametrized
 
 #: leaves per parameter of the hit hierarchy (a power of two)
 HIT_LEAVES = 64
@@ -50,7 +50,7 @@ def _cell_pad(S: np.ndarray) -> np.ndarray:
 class _Hierarchy:
     """Boxes of a ``HIT_LEAVES x HIT_LEAVES`` parameter grid and their ancestors."""
 
-    def __init__(self, surface: Surface) -> None:
+    def __init__(self, surface: Parametrized) -> None:
         d = surface.domain
         n = HIT_LEAVES
         self.n = n
@@ -84,7 +84,7 @@ class _Hierarchy:
         self.flat = [(a.reshape(-1, 3), b.reshape(-1, 3)) for a, b in self.levels]
 
 
-def _check_regular(surface: Surface, P: np.ndarray, S: np.ndarray) -> None:
+def _check_regular(surface: Parametrized, P: np.ndarray, S: np.ndarray) -> None:
     """Refuse a degenerate surface before any ray is cast at it.
 
     ``P`` is the sample grid over the whole domain and ``S`` the 3x3 samples of
@@ -121,7 +121,7 @@ def _check_regular(surface: Surface, P: np.ndarray, S: np.ndarray) -> None:
         )
 
 
-def _hierarchy(surface: Surface) -> _Hierarchy:
+def _hierarchy(surface: Parametrized) -> _Hierarchy:
     """The surface's hierarchy, built once per surface object."""
     return per_surface(surface, "hierarchy", lambda: _Hierarchy(surface))
 
@@ -174,7 +174,7 @@ def _candidates(H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray) -
     return r, k // n, k % n, s0, s1
 
 
-def _sub_boxes(surface: Surface, c0: np.ndarray, c1: np.ndarray, size: float) -> Any:
+def _sub_boxes(surface: Parametrized, c0: np.ndarray, c1: np.ndarray, size: float) -> Any:
     """Padded boxes of parameter rectangles ``[c0, c1]`` (n, 2)."""
     f = np.array([0.0, 0.5, 1.0])
     u1 = c0[:, 0, None] + (c1[:, 0] - c0[:, 0])[:, None] * f

@@ -29,7 +29,7 @@ from ._zero_set import CONTOUR_GRID, grid_parameters, zero_set
 if TYPE_CHECKING:
     from ...curves import CurveBatch
     from ...scene.projectors import Projector
-    from .._base import Surface
+    from .._domain import Parametrized
 
 __all__ = [
     "contour",
@@ -49,7 +49,7 @@ def _is_central(projector: Any) -> bool:
     return isinstance(projector, CentralProjector)
 
 
-def view_cosine(surface: Surface, projector: Projector, u1: Any, u2: Any) -> np.ndarray:
+def view_cosine(surface: Parametrized, projector: Projector, u1: Any, u2: Any) -> np.ndarray:
     """``N . w / |w|`` (``N`` unit normal, ``w`` toward the viewer); zero on the
     contour, NaN at singular points of the parametrization (:func:`normal_floor`)."""
     u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
@@ -59,7 +59,7 @@ def view_cosine(surface: Surface, projector: Projector, u1: Any, u2: Any) -> np.
     return _cosine(n, p, projector, normal_floor(surface))
 
 
-def normal_floor(surface: Surface) -> float:
+def normal_floor(surface: Parametrized) -> float:
     """The length of ``x_1 x x_2`` below which a point is singular: its normal
     is undefined, the computed one noise (``SINGULAR_NORMAL_RTOL`` of the
     surface's typical ``|x_1| |x_2|``, ``size^2 / (span_1 span_2)``)."""
@@ -82,7 +82,7 @@ def _cosine(
     return np.where(nn > floor, f, np.nan)
 
 
-def _analytic_second_derivatives(surface: Surface) -> bool:
+def _analytic_second_derivatives(surface: Parametrized) -> bool:
     """Whether the surface's class overrides the numeric default of
     ``second_derivatives`` (defined by the base class: the last of the MRO),
     and, for a :class:`~lgraph.ParametricSurface`, was given them."""
@@ -93,7 +93,7 @@ def _analytic_second_derivatives(surface: Surface) -> bool:
 
 
 def view_cosine_gradient(
-    surface: Surface, projector: Projector, u1: Any, u2: Any
+    surface: Parametrized, projector: Projector, u1: Any, u2: Any
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``f = N . w / |w|`` and its partial derivatives ``f_1, f_2`` from the
     second derivatives: with ``n = x_1 x x_2``, ``n_i = x_1i x x_2 + x_1 x x_2i``
@@ -126,7 +126,7 @@ def view_cosine_gradient(
 
 
 def project_to_contour(
-    surface: Surface, projector: Projector, uv: np.ndarray, steps: int = 4
+    surface: Parametrized, projector: Projector, uv: np.ndarray, steps: int = 4
 ) -> np.ndarray:
     """Newton projection of parameters ``uv (n, 2)`` onto the contour ``f = 0``
     (with the analytic gradient :func:`view_cosine_gradient` where the surface
@@ -143,7 +143,7 @@ def project_to_contour(
 
 
 def project_to_zero(
-    surface: Surface,
+    surface: Parametrized,
     fun: Any,
     uv: np.ndarray,
     steps: int = 4,
@@ -193,7 +193,7 @@ def _difference(d: Any, fun: Any, p: np.ndarray, i: int, h: float) -> np.ndarray
         return (fun(b[:, 0], b[:, 1]) - fun(a[:, 0], a[:, 1])) / (b[:, i] - a[:, i])
 
 
-def grid_geometry(surface: Surface, grid: int = CONTOUR_GRID) -> tuple[np.ndarray, np.ndarray]:
+def grid_geometry(surface: Parametrized, grid: int = CONTOUR_GRID) -> tuple[np.ndarray, np.ndarray]:
     """The normals ``x_1 x x_2`` and the points on the nodes of
     :func:`~lgraph.surfaces.parametric._zero_set.grid_parameters`: the same for every
     view, computed once per surface."""
@@ -206,7 +206,9 @@ def grid_geometry(surface: Surface, grid: int = CONTOUR_GRID) -> tuple[np.ndarra
     return per_surface(surface, ("contour grid", grid), compute)
 
 
-def contour(surface: Surface, projector: Projector, grid: int = CONTOUR_GRID) -> list[CurveBatch]:
+def contour(
+    surface: Parametrized, projector: Projector, grid: int = CONTOUR_GRID
+) -> list[CurveBatch]:
     """Numeric contour of ``surface`` for ``projector`` (local frame), as one batch."""
 
     def fun(u1: Any, u2: Any) -> np.ndarray:
@@ -225,7 +227,7 @@ class _ContourCurve:
     whose closing step crosses a twisted seam comes back mirrored, so its
     spline runs over two laps (a translation apart) of which one is drawn."""
 
-    def __init__(self, surface: Surface, pts: np.ndarray, closed: bool) -> None:
+    def __init__(self, surface: Parametrized, pts: np.ndarray, closed: bool) -> None:
         d = surface.domain
         scale = np.array([d.span(0), d.span(1)])
         p = unjump(d, pts)
@@ -258,14 +260,14 @@ class _ContourCurve:
         return self.spline(t) + np.outer(t / self.period, self.drift)
 
 
-def _contour_batch(surface: Surface, projector: Projector, curves: list) -> CurveBatch:
+def _contour_batch(surface: Parametrized, projector: Projector, curves: list) -> CurveBatch:
     return zero_set_batch(
         surface, curves, lambda uv: project_to_contour(surface, projector, uv), "contour", CONTOUR
     )
 
 
 def zero_set_batch(
-    surface: Surface, curves: list, adjust: Any, family: str, own: int = ON
+    surface: Parametrized, curves: list, adjust: Any, family: str, own: int = ON
 ) -> CurveBatch:
     """One batch of the :func:`zero_set` curves: splines in the parameter plane
     (periodic for closed curves) whose points ``adjust(uv)`` projects back onto

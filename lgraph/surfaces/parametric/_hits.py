@@ -22,7 +22,7 @@ from ...geometry.vectors import cross as _cross
 from ._boxes import _candidates, _Hierarchy, _hierarchy, _inverse, _slab, _sub_boxes
 
 if TYPE_CHECKING:
-    from .._base import Surface
+    from .._domain import Parametrized
 
 __all__ = ["hits"]
 
@@ -35,14 +35,14 @@ HIT_NEWTON_STEPS = 30
 CONTOUR_SELF_RTOL = 1e-5
 
 
-def _analytic_derivatives(surface: Surface) -> bool:
+def _analytic_derivatives(surface: Parametrized) -> bool:
     # the base class marks its finite-difference default (no import of _base here)
     if getattr(type(surface).derivatives, "finite_differences", False):
         return False
     return getattr(surface, "derivatives_func", True) is not None
 
 
-def _fast_derivatives(surface: Surface, u1: np.ndarray, u2: np.ndarray, x: np.ndarray) -> Any:
+def _fast_derivatives(surface: Parametrized, u1: np.ndarray, u2: np.ndarray, x: np.ndarray) -> Any:
     """Derivatives for Newton's method: analytic if the class has them, else
     forward differences (accurate enough for Newton, 3 times cheaper)."""
     if _analytic_derivatives(surface):
@@ -60,7 +60,7 @@ def _fast_derivatives(surface: Surface, u1: np.ndarray, u2: np.ndarray, x: np.nd
 
 
 def _newton(
-    surface: Surface,
+    surface: Parametrized,
     o: np.ndarray,
     v: np.ndarray,
     uv: np.ndarray,
@@ -123,7 +123,7 @@ def _newton(
 
 
 def _in_cell(
-    surface: Surface, uv: np.ndarray, c0: np.ndarray, c1: np.ndarray, margin: float = 0.05
+    surface: Parametrized, uv: np.ndarray, c0: np.ndarray, c1: np.ndarray, margin: float = 0.05
 ) -> np.ndarray:
     d = surface.domain
     inside = np.ones(len(uv), bool)
@@ -139,7 +139,7 @@ def _in_cell(
 
 
 def _local_second_root(
-    surface: Surface, o: np.ndarray, v: np.ndarray, uv0: np.ndarray
+    surface: Parametrized, o: np.ndarray, v: np.ndarray, uv0: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """Start of Newton for the root next to the own root ``(uv0, 0)``: the local
     quadratic approximation gives ``s = 2 (v . N) / II(a)`` with ``J a`` the
@@ -168,7 +168,7 @@ def _local_second_root(
 
 
 def hits(
-    surface: Surface,
+    surface: Parametrized,
     origins: np.ndarray,
     directions: np.ndarray,
     smax: np.ndarray,
@@ -199,7 +199,7 @@ def hits(
 
 
 def _hits_chunk(
-    surface: Surface,
+    surface: Parametrized,
     H: _Hierarchy,
     o: np.ndarray,
     v: np.ndarray,

@@ -50,7 +50,7 @@ from ._zero_set import CONTOUR_GRID, EDGE_XTOL, march
 
 if TYPE_CHECKING:
     from ...curves import CurveBatch
-    from .._base import Surface
+    from .._domain import Parametrized
 
 __all__ = ["singular_curves", "singular_edge_batches"]
 
@@ -59,12 +59,12 @@ __all__ = ["singular_curves", "singular_edge_batches"]
 OFFSET = (3 - 5**0.5) / 2
 
 
-def _axis(surface: Surface, i: int, n: int) -> np.ndarray:
+def _axis(surface: Parametrized, i: int, n: int) -> np.ndarray:
     lo, hi = surface.domain.range(i)
     return lo + (hi - lo) * (np.arange(n) + OFFSET) / n
 
 
-def _normals(surface: Surface, u1: Any, u2: Any) -> np.ndarray:
+def _normals(surface: Parametrized, u1: Any, u2: Any) -> np.ndarray:
     x1, x2 = surface.derivatives(u1, u2)
     return _cross(x1, x2)
 
@@ -76,7 +76,9 @@ def _unit(n: np.ndarray, floor: float) -> np.ndarray:
         return np.where(length > floor, n / length, np.nan)
 
 
-def singular_curves(surface: Surface, grid: int = CONTOUR_GRID) -> list[tuple[np.ndarray, bool]]:
+def singular_curves(
+    surface: Parametrized, grid: int = CONTOUR_GRID
+) -> list[tuple[np.ndarray, bool]]:
     """The curves ``(points (k, 2), closed)`` in the parameter plane along which
     the normal of ``surface`` vanishes and flips (module docstring), computed
     once per surface.  The contour's grid (computed anyway, and kept) is
@@ -85,7 +87,7 @@ def singular_curves(surface: Surface, grid: int = CONTOUR_GRID) -> list[tuple[np
     return per_surface(surface, ("singular curves", grid), lambda: _find(surface, grid))
 
 
-def _suspect(surface: Surface, grid: int, floor: float) -> bool:
+def _suspect(surface: Parametrized, grid: int, floor: float) -> bool:
     """Whether the contour's grid has neighbouring nodes with normals pointing
     apart, or a node inside the domain whose normal vanishes."""
     d = surface.domain
@@ -104,7 +106,7 @@ def _suspect(surface: Surface, grid: int, floor: float) -> bool:
     return False
 
 
-def _refine(surface: Surface, pa: np.ndarray, pb: np.ndarray, na: np.ndarray, nb: np.ndarray,
+def _refine(surface: Parametrized, pa: np.ndarray, pb: np.ndarray, na: np.ndarray, nb: np.ndarray,
             floor: float) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """The flips of the normal on segments ``pa -> pb`` (normals ``na``, ``nb``
     at the ends pointing apart), refined, and which are zeros of the normal."""
@@ -126,7 +128,7 @@ def _refine(surface: Surface, pa: np.ndarray, pb: np.ndarray, na: np.ndarray, nb
     return pts, apart & (at <= SINGULAR_EDGE_RTOL * ends)
 
 
-def _find(surface: Surface, grid: int) -> list[tuple[np.ndarray, bool]]:
+def _find(surface: Parametrized, grid: int) -> list[tuple[np.ndarray, bool]]:
     d = surface.domain
     floor = normal_floor(surface)
     if not _suspect(surface, grid, floor):
@@ -156,7 +158,7 @@ def _find(surface: Surface, grid: int) -> list[tuple[np.ndarray, bool]]:
     return _to_edges(surface, out, np.array([a1[1] - a1[0], a2[1] - a2[0]]), floor)
 
 
-def _to_edges(surface: Surface, curves: list, h: np.ndarray, floor: float) -> list:
+def _to_edges(surface: Parametrized, curves: list, h: np.ndarray, floor: float) -> list:
     """The open ``curves`` continued to the edges of the domain that their
     ends lie within ``1.5`` grid cells ``h`` of (the grid is offset from
     them): each end's tangent meets the edge; the flip is refined on the edge
@@ -200,7 +202,7 @@ def _to_edges(surface: Surface, curves: list, h: np.ndarray, floor: float) -> li
     return [(p, c) for p, (_, c) in zip(out, curves)]
 
 
-def singular_edge_batches(surface: Surface) -> list[CurveBatch]:
+def singular_edge_batches(surface: Parametrized) -> list[CurveBatch]:
     """The singular curves of ``surface`` (:func:`singular_curves`) as one
     batch of family ``"boundary"`` (empty where there are none)."""
     curves = singular_curves(surface)

@@ -24,7 +24,7 @@ from ..._roots import bracketed_roots
 from ._seams import join_pieces
 
 if TYPE_CHECKING:
-    from .._base import Surface
+    from .._domain import Parametrized
 
 __all__ = ["march", "zero_set"]
 
@@ -40,7 +40,7 @@ EDGE_FTOL = 4 * np.finfo(float).eps
 JUMP_RTOL = 1e-6
 
 
-def _grid_axis(surface: Surface, i: int, n: int) -> np.ndarray:
+def _grid_axis(surface: Parametrized, i: int, n: int) -> np.ndarray:
     d = surface.domain
     lo, hi = d.range(i)
     if d.periodic[i] is True:
@@ -50,7 +50,7 @@ def _grid_axis(surface: Surface, i: int, n: int) -> np.ndarray:
     return np.linspace(lo + inset * low, hi - inset * high, n)
 
 
-def collapsed_ends(surface: Surface) -> tuple[tuple[bool, bool], tuple[bool, bool]]:
+def collapsed_ends(surface: Parametrized) -> tuple[tuple[bool, bool], tuple[bool, bool]]:
     """Per parameter, which of its ends (not glued) the surface maps to one
     point, declared a pole or not (a sphere chart whose poles are not
     declared): the grid keeps ``1e-7`` of the span from them, as from poles,
@@ -97,14 +97,16 @@ def _edge_roots(
     return a + t[:, None] * d
 
 
-def grid_parameters(surface: Surface, grid: int = CONTOUR_GRID) -> tuple[np.ndarray, np.ndarray]:
+def grid_parameters(
+    surface: Parametrized, grid: int = CONTOUR_GRID
+) -> tuple[np.ndarray, np.ndarray]:
     """``U1, U2`` (``grid x grid``, ``indexing="ij"``): the nodes :func:`zero_set` marches on."""
     a1, a2 = _grid_axis(surface, 0, grid), _grid_axis(surface, 1, grid)
     return np.meshgrid(a1, a2, indexing="ij")
 
 
 def zero_set(
-    surface: Surface, fun: Any, grid: int = CONTOUR_GRID, values: np.ndarray | None = None
+    surface: Parametrized, fun: Any, grid: int = CONTOUR_GRID, values: np.ndarray | None = None
 ) -> list[tuple[np.ndarray, bool]]:
     """The curves ``fun(u1, u2) = 0`` on the surface's domain as ``(points, closed)``:
     marching squares on a ``grid x grid`` parameter grid (periodic parameters
