@@ -50,12 +50,12 @@ from __future__ import annotations
 import threading
 from collections import OrderedDict
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
-    from ..scene.graph import Node
     from ..scene.projectors import Projector
+    from ..surfaces._base import Surface
     from . import Family
 
 __all__ = [
@@ -67,6 +67,15 @@ __all__ = [
     "set_max_entries",
     "MAX_ENTRIES",
 ]
+
+
+class HoldsSurface(Protocol):
+    """What the cache needs of a node: its surface (:class:`lgraph.Node`, which
+    the scene graph that imports this module holds, or a stand-in)."""
+
+    @property
+    def surface(self) -> Surface | None: ...
+
 
 #: Default bound on the number of cached family results (see the module docs).
 MAX_ENTRIES = 64
@@ -107,7 +116,7 @@ def is_view_dependent(family: Family) -> bool:
 
 
 def family_batches(
-    node: Node, index: int, family: Family, projector: Projector | None
+    node: HoldsSurface, index: int, family: Family, projector: Projector | None
 ) -> list[CurveBatch]:
     """``family.batches(node.surface, projector)``, computed once per surface
     and family when the family does not depend on the view (``index``, the

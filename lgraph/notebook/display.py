@@ -32,15 +32,15 @@ from __future__ import annotations
 import os
 import tempfile
 import weakref
+from collections.abc import Sequence
 from pathlib import Path
-from typing import IO, TYPE_CHECKING, Any
+from typing import IO, TYPE_CHECKING, Any, Protocol, TypeVar
 
 import numpy as np
 
 if TYPE_CHECKING:
-    from ..output.drawing import Drawing
-    from ..scene.graph import Scene
     from ..scene.projectors import Projector
+    from ..scene.style import Style
 
 __all__ = [
     "save_to_fileobj",
@@ -51,6 +51,78 @@ __all__ = [
     "DEFAULT_VIEW",
     "REPR_PNG_DPI",
 ]
+
+
+# -- what this module needs of a drawing and a scene -------------------------------
+# (lgraph.output.drawing.Drawing and lgraph.Scene, which call this module: typed by
+# protocols, the imports go one way)
+class _PlottedStroke(Protocol):
+    """A stroke as :func:`plot` draws it (:class:`~lgraph.output.drawing.Stroke`)."""
+
+    @property
+    def xy(self) -> np.ndarray: ...
+
+    @property
+    def visible(self) -> bool: ...
+
+    @property
+    def family(self) -> str: ...
+
+    @property
+    def style(self) -> Style: ...
+
+
+class _PlottedLabel(Protocol):
+    """A placed label as :func:`plot` writes it (:class:`~lgraph.PlacedLabel`)."""
+
+    @property
+    def text(self) -> str: ...
+
+    @property
+    def xy(self) -> np.ndarray: ...
+
+    @property
+    def visible(self) -> bool: ...
+
+    @property
+    def anchor(self) -> str: ...
+
+    @property
+    def offset(self) -> tuple[float, float]: ...
+
+    @property
+    def size(self) -> float: ...
+
+    @property
+    def style(self) -> Style: ...
+
+
+class Shown(Protocol):
+    """A drawing as this module shows it (:class:`~lgraph.output.drawing.Drawing`):
+    its strokes, labels and bounds; the backends that :func:`to_bytes` runs get it whole."""
+
+    @property
+    def strokes(self) -> Sequence[_PlottedStroke]: ...
+
+    @property
+    def labels(self) -> Sequence[_PlottedLabel]: ...
+
+    def bounds(self) -> tuple[float, float, float, float]: ...
+
+
+#: what a scene renders to (its drawing)
+D_co = TypeVar("D_co", covariant=True)
+
+
+class Showable(Protocol[D_co]):
+    """A scene as :func:`scene_drawing` shows it (:class:`~lgraph.Scene`): its
+    nodes (compared by identity) and its drawing in a view."""
+
+    @property
+    def nodes(self) -> tuple[object, ...]: ...
+
+    def render(self, projector: Projector) -> D_co: ...
+
 
 #: The view a scene shows of itself in a notebook: parallel projection from
 #: azimuth -60 degrees, elevation 30 degrees (as ``ParallelProjector.from_angles``).
@@ -69,7 +141,7 @@ def _format_suffix(format: Any) -> str:
     return "." + format.strip().lstrip(".").lower()
 
 
-def to_bytes(drawing: Drawing, format: str, **options: Any) -> bytes:
+def to_bytes(drawing: Shown, format: str, **options: Any) -> bytes:
     """The file ``drawing.save(path.<format>, **options)`` would write, as bytes.
 
     The backend writes into a private temporary folder (backends write paths,
@@ -85,7 +157,7 @@ def to_bytes(drawing: Drawing, format: str, **options: Any) -> bytes:
         return path.read_bytes()
 
 
-def save_to_fileobj(drawing: Drawing, fileobj: IO[bytes], format: Any, **options: Any) -> IO[bytes]:
+def save_to_fileobj(drawing: Shown, fileobj: IO[bytes], format: Any, **options: Any) -> IO[bytes]:
     """Write ``drawing`` into the binary file object ``fileobj`` (at its position).
 
     The whole file is produced first, so a failing backend writes nothing into
@@ -116,7 +188,7 @@ def default_view() -> Projector:
 _SHOWN: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def scene_drawing(scene: Scene) -> Drawing:
+def scene_drawing(scene: Showable[D_co]) -> D_co:
     """The scene rendered from :data:`DEFAULT_VIEW` (remembered until a node is
     added: IPython asks for the SVG and the PNG of the same scene)."""
     nodes = scene.nodes
@@ -142,7 +214,7 @@ def _matplotlib() -> Any:
     return matplotlib, LineCollection
 
 
-def plot(drawing: Drawing, ax: Any = None, *, axis: bool = False, legend: bool = False) -> Any:
+def plot(drawing: Shown, ax: Any = None, *, axis: bool = False, legend: bool = False) -> Any:
     """Draw the drawing into a matplotlib ``Axes`` (a new figure when None).
 
     One ``LineCollection`` per family, visibility and style (hidden parts
@@ -216,7 +288,7 @@ def plot(drawing: Drawing, ax: Any = None, *, axis: bool = False, legend: bool =
     return ax
 
 
-def _plot_labels(drawing: Drawing, ax: Any) -> None:
+def _plot_labels(drawing: Shown, ax: Any) -> None:
     """The labels as matplotlib text: the anchor point of the text's padded
     box at the offset anchor, as :meth:`lgraph.PlacedLabel.origin` places it."""
     from matplotlib.transforms import offset_copy

@@ -16,7 +16,8 @@ ValueError: Page: width and height must exceed twice the margin (120 pt), got 10
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 import attrs
 import numpy as np
@@ -24,9 +25,47 @@ import numpy as np
 from .._validate import finite_positive, nonnegative_finite
 
 if TYPE_CHECKING:
-    from .drawing import Drawing
+    from ..scene.style import Style
 
 __all__ = ["Page", "page_layout", "stroke_ink"]
+
+
+class _Inked(Protocol):
+    """What the layout needs of a stroke (:class:`~lgraph.output.drawing.Stroke`)."""
+
+    @property
+    def xy(self) -> np.ndarray: ...
+
+    @property
+    def style(self) -> Style: ...
+
+
+class _Boxed(Protocol):
+    """What the layout needs of a placed label (:class:`~lgraph.output.drawing.PlacedLabel`)."""
+
+    @property
+    def xy(self) -> np.ndarray: ...
+
+    def box(self) -> tuple[float, float, float, float]: ...
+
+
+class Laid(Protocol):
+    """What the layout needs of a drawing (:class:`~lgraph.output.drawing.Drawing`,
+    which imports this module: typing by this protocol keeps the import one-way)."""
+
+    @property
+    def strokes(self) -> Sequence[_Inked]: ...
+
+    @property
+    def labels(self) -> Sequence[_Boxed]: ...
+
+    @property
+    def page(self) -> Page: ...
+
+    @property
+    def window(self) -> tuple[float, float, float, float] | None: ...
+
+    def bounds(self) -> tuple[float, float, float, float]: ...
 
 
 @attrs.frozen
@@ -89,7 +128,7 @@ def _page(value: Any) -> Page:
     return Page(float(w), float(h))
 
 
-def page_layout(drawing: Drawing) -> tuple[float, np.ndarray, float, float]:
+def page_layout(drawing: Laid) -> tuple[float, np.ndarray, float, float]:
     """Scale, offset and page size that map ``drawing``'s projection coordinates
     to page points (pt, y up): the window (default: the strokes' bounds) fitted to
     the page, or with labels, the window and the labels' text boxes."""
@@ -151,7 +190,7 @@ def _fit_scale(a: np.ndarray, lo: np.ndarray, hi: np.ndarray, avail: float) -> f
     return s_lo
 
 
-def stroke_ink(drawing: Drawing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def stroke_ink(drawing: Laid) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each stroke's lower left and upper right points (projection
     coordinates, ``(k, 2)`` each) and half its line width (pt, ``(k,)``): the
     ink of a stroke with round caps reaches that far beyond its points.
@@ -176,7 +215,7 @@ def stroke_ink(drawing: Drawing) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def _layout_with_boxes(
-    drawing: Drawing,
+    drawing: Laid,
     bounds: tuple[float, float, float, float],
     w: float,
     h: float,

@@ -54,7 +54,7 @@ from .twins import twin_groups
 from .views import Views
 
 if TYPE_CHECKING:
-    from ..scene.graph import Node, Scene
+    from ._protocols import NodeT, Renderable, RenderNode
 
 __all__ = ["render", "render_views", "local_projector"]
 
@@ -125,7 +125,7 @@ def _undrawn(nodes: tuple, first: np.ndarray, ni: int) -> Any:
 
 
 def render(
-    scene: Scene,
+    scene: Renderable[NodeT],
     projector: Projector,
     *,
     hidden_lines: bool = False,
@@ -145,7 +145,7 @@ def render(
 
 
 def render_views(
-    scene: Scene,
+    scene: Renderable[NodeT],
     projectors: Sequence[Projector],
     *,
     hidden_lines: bool = False,
@@ -226,7 +226,7 @@ def _checked_options(
 
 
 def _render(
-    scene: Scene,
+    scene: Renderable[NodeT],
     views: Views,
     hidden_lines: bool,
     tolerance: float,
@@ -348,9 +348,9 @@ def _shared_owners(s: Samples, partner: dict[int, int], n: int) -> list[tuple[in
 
 
 def _with_marks(
-    scene: Scene,
+    scene: Renderable[NodeT],
     strokes: list[Stroke],
-    nodes: tuple[Node, ...],
+    nodes: tuple[RenderNode, ...],
     projector: Projector,
     hidden_lines: bool,
     rule: Callable[[str, int], Style | None],
@@ -386,7 +386,7 @@ def _checked_page(page: object) -> Page | None:
         ) from None
 
 
-def _warn_unused_styles(s: Samples, nodes: tuple[Node, ...]) -> None:
+def _warn_unused_styles(s: Samples, nodes: tuple[RenderNode, ...]) -> None:
     """Warn about keys of a node's style dict that name no family it draws
     (a typo such as ``"kontour"`` would otherwise pass silently)."""
     drawn: dict[int, set[str]] = {}

@@ -42,8 +42,8 @@ from ..surfaces._base import Domain, Surface
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch
-    from ..scene.graph import Node
     from ..scene.projectors import Projector
+    from ._protocols import RenderNode
 
 __all__ = ["Meeting", "Placed", "intersection_batches", "meeting_pairs"]
 
@@ -126,7 +126,7 @@ def _moved_box(surface: Surface, transform: Transform) -> tuple[np.ndarray, np.n
     return c.min(axis=0), c.max(axis=0)
 
 
-def meeting_pairs(nodes: tuple[Node, ...], first: np.ndarray) -> list[tuple[int, int]]:
+def meeting_pairs(nodes: tuple[RenderNode, ...], first: np.ndarray) -> list[tuple[int, int]]:
     """Pairs ``(i, j)``, ``i < j``, of surface nodes whose world boxes
     overlap (the surfaces may meet), twins left out; ``first`` from
     :func:`~lgraph.render.twins.twin_groups`."""
@@ -150,7 +150,7 @@ def meeting_pairs(nodes: tuple[Node, ...], first: np.ndarray) -> list[tuple[int,
 
 
 def intersection_batches(
-    nodes: tuple[Node, ...], pairs: list[tuple[int, int]]
+    nodes: tuple[RenderNode, ...], pairs: list[tuple[int, int]]
 ) -> dict[int, list[tuple[CurveBatch, int]]]:
     """The intersection curves of the node ``pairs`` that may meet
     (:func:`meeting_pairs`): per node index, the batches it draws and, with

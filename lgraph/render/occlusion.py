@@ -18,7 +18,7 @@ from .twins import lies_on, twin_groups
 from .views import Views, as_views
 
 if TYPE_CHECKING:
-    from ..scene.graph import Node
+    from ._protocols import RenderNode
 
 __all__ = ["NotBatchable", "Occlusion"]
 
@@ -85,7 +85,7 @@ class Occlusion:
 
     def __init__(
         self,
-        nodes: tuple[Node, ...],
+        nodes: tuple[RenderNode, ...],
         projector: Projector | Views,
         shared: Sequence[tuple[int, int]] = (),
     ) -> None:

@@ -15,14 +15,14 @@ from ..scene.style import Style
 from .sampling import Samples
 
 if TYPE_CHECKING:
-    from ..scene.graph import Node
+    from ._protocols import RenderNode
 
 __all__ = ["run_strokes"]
 
 
 def run_strokes(
     s: Samples,
-    nodes: tuple[Node, ...],
+    nodes: tuple[RenderNode, ...],
     hidden_lines: bool,
     rule: Callable[[str, int], Style | None],
     min_extent: list[float],
@@ -147,7 +147,7 @@ def run_strokes(
     return out
 
 
-def _own_surface(surface: Any, node: Node) -> Any:
+def _own_surface(surface: Any, node: RenderNode) -> Any:
     """The node's own surface object for a batch's ``surface``: a cached
     batch is shared by equal surfaces of several nodes
     (:mod:`lgraph.families.cache`), and holds the first of them."""

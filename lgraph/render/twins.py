@@ -10,8 +10,8 @@ import numpy as np
 from .. import _tolerance as tol
 
 if TYPE_CHECKING:
-    from ..scene.graph import Node
     from ..surfaces._base import Surface
+    from ._protocols import RenderNode
 
 __all__ = ["lies_on", "twin_groups"]
 
@@ -34,7 +34,7 @@ def lies_on(surface: Surface, points: np.ndarray) -> np.ndarray:
     return dist <= tol.COINCIDENT_RTOL * size
 
 
-def twin_groups(nodes: tuple[Node, ...]) -> np.ndarray:
+def twin_groups(nodes: tuple[RenderNode, ...]) -> np.ndarray:
     """For every node, the index of the first node holding the same surface
     (the same object or an equal one) under the same transform; -1 for nodes
     without a surface.  Hashable surfaces are grouped through a dict (linear
