@@ -98,10 +98,14 @@ class _Aliases:
         return ModuleSpec(fullname, self) if fullname in MOVED else None
 
     def create_module(self, spec: ModuleSpec) -> ModuleType:
-        return importlib.import_module(MOVED[spec.name])
+        module = importlib.import_module(MOVED[spec.name])
+        spec.loader_state = module.__spec__  # importlib sets the alias's spec on it
+        return module
 
     def exec_module(self, module: ModuleType) -> None:
-        """The new module ran already."""
+        """The new module ran already; it gets its own spec back (importlib gave it
+        the alias's, whose parent differs from its ``__package__``)."""
+        module.__spec__ = module.__spec__.loader_state
 
 
 def install() -> None:

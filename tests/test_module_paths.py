@@ -8,6 +8,7 @@ from, and stay under about 500 lines each.
 from __future__ import annotations
 
 import importlib
+import io
 from pathlib import Path
 
 import pytest
@@ -82,6 +83,29 @@ def test_every_old_module_path_is_its_new_module() -> None:
     for old, new in MOVED.items():
         assert importlib.import_module(old) is importlib.import_module(new), old
         assert not (PACKAGE.parent / (old.replace(".", "/") + ".py")).exists(), old
+
+
+def test_an_old_path_leaves_the_new_module_its_own_spec() -> None:
+    """Importing a module by its old path keeps the module's ``__spec__`` (its
+    relative imports inside functions would otherwise warn, and fail where
+    warnings are errors: ``__package__ != __spec__.parent``)."""
+    import warnings
+
+    for old, new in MOVED_SAMPLE:
+        module = importlib.import_module(old)
+        assert module.__spec__.name == new and module.__spec__.parent == module.__package__
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        import lgraph as lg
+
+        drawing = lg.Drawing(strokes=())
+        assert drawing.save(io.BytesIO(), format="svg").getvalue().startswith(b"<?xml")
+
+
+MOVED_SAMPLE = [
+    ("lgraph.drawing", "lgraph.output.drawing"),
+    ("lgraph.backends", "lgraph.output.backends"),
+]
 
 
 def test_the_paths_plugins_use() -> None:
