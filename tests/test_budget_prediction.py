@@ -41,6 +41,20 @@ def _no_ray_tests(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(render_module, "refine", reached)
 
 
+def _count_ray_tests(monkeypatch: pytest.MonkeyPatch) -> list[int]:
+    """The number of samples each ray-test call of the render asks (recorded
+    in the returned list)."""
+    calls: list[int] = []
+    classify = render_module._classify
+
+    def counted(s: Any, vis: Any, rows: Any = None) -> None:
+        calls.append(int(s.fresh.sum()) if rows is None else len(rows))
+        classify(s, vis, rows)
+
+    monkeypatch.setattr(render_module, "_classify", counted)
+    return calls
+
+
 @pytest.mark.parametrize("surface", ["sphere", "torus"])
 def test_a_tiny_tolerance_with_many_lines_is_refused_before_the_ray_tests(
     monkeypatch: pytest.MonkeyPatch, surface: str
@@ -143,14 +157,7 @@ def test_costly_ray_tests_are_refused_before_they_run(monkeypatch: pytest.Monkey
     quick: 2 + 2 lines."""
     from lgraph.render.prediction import RayBudgetError
 
-    calls = []
-    classify = render_module._classify
-
-    def counted(s: Any, vis: Any, rows: Any = None) -> None:
-        calls.append(int(s.fresh.sum()) if rows is None else len(rows))
-        classify(s, vis, rows)
-
-    monkeypatch.setattr(render_module, "_classify", counted)
+    calls = _count_ray_tests(monkeypatch)
     monkeypatch.setattr(tol, "MAX_RAY_BOXES", 20_000)
     scene = lg.Scene()
     scene.add(_bumpy(), lg.ParameterLines(2, 2), contour=False)
@@ -171,14 +178,7 @@ def test_many_predicted_samples_are_probed_before_the_first_ray_tests(
     the rest are not when the prediction is over the budget."""
     from lgraph.render.prediction import RayBudgetError
 
-    calls = []
-    classify = render_module._classify
-
-    def counted(s: Any, vis: Any, rows: Any = None) -> None:
-        calls.append(int(s.fresh.sum()) if rows is None else len(rows))
-        classify(s, vis, rows)
-
-    monkeypatch.setattr(render_module, "_classify", counted)
+    calls = _count_ray_tests(monkeypatch)
     monkeypatch.setattr(tol, "MAX_RAY_BOXES", 50_000)
     scene = lg.Scene()
     scene.add(_bumpy(), lg.ParameterLines(40, 40), contour=False)
