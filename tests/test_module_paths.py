@@ -108,6 +108,29 @@ MOVED_SAMPLE = [
 ]
 
 
+def test_every_public_surface_class_is_in_lgraph_surfaces() -> None:
+    """``from lgraph.surfaces import X`` for every surface class of ``lg``
+    (the figure objects Arrow and Parallelogram live in ``lgraph.scene``), the
+    same object; ``__all__`` names them all."""
+    import lgraph as lg
+    import lgraph.surfaces as surfaces
+
+    objects = {"Arrow", "Parallelogram"}
+    names = [
+        n
+        for n in dir(lg)
+        if isinstance(getattr(lg, n, None), type)
+        and issubclass(getattr(lg, n), surfaces.Surface)
+        and n not in objects
+    ]
+    assert len(names) > 30
+    for name in names:
+        assert getattr(surfaces, name) is getattr(lg, name), name
+    assert set(names) <= set(surfaces.__all__)
+    with pytest.raises(AttributeError, match="no attribute 'Nonesuch'"):
+        surfaces.Nonesuch  # noqa: B018
+
+
 def test_the_paths_plugins_use() -> None:
     """``lgraph.surfaces.Surface``, ``lgraph.plugins``, ``lgraph.backends`` and the
     output modules the example plugins imported before issue #30."""
