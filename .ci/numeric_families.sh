@@ -7,13 +7,14 @@ cd "$(dirname "$0")/.."
 # (and the shared root finder on scipy's elementwise find_root, issue 12: its users
 # are the ruled surfaces and the numeric contours; and the ray tests and transition
 # functions of the monkey saddle and the surfaces of revolution; and many views
-# rendered together, each as alone, issue 14)
+# rendered together, each as alone, issue 14; the contours and edges near the
+# singular lines of a parametrization, issue 25)
 tests=(tests/test_field_lines.py tests/test_numeric_curvature.py tests/test_surface_curves.py
        tests/test_parametric.py lgraph/families lgraph/curvature.py
        tests/test_roots.py tests/test_ruled.py lgraph/_roots.py
        tests/test_polyroots.py tests/test_monkey_saddle_margins.py tests/test_surface_memo.py
        tests/test_revolution_fast.py tests/test_revolution_visibility.py
-       tests/test_render_views.py)
+       tests/test_render_views.py tests/test_singular_edges.py)
 
 features="$(python .ci/npy_dispatch.py)"
 echo "ci: numeric families with NPY_DISABLE_CPU_FEATURES='$features'"

@@ -29,29 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-
-def enneper(u, v):
-    return np.stack(
-        np.broadcast_arrays(u - u**3 / 3 + u * v**2, v - v**3 / 3 + v * u**2, u**2 - v**2), -1
-    )
-
-
-def dini(u, v, a=1.0, b=0.2):
-    x = a * np.cos(u) * np.sin(v)
-    y = a * np.sin(u) * np.sin(v)
-    z = a * (np.cos(v) + np.log(np.tan(v / 2))) + b * u
-    return np.stack(np.broadcast_arrays(x, y, z), -1)
-
-
-def boy(u, v):
-    r2 = np.sqrt(2.0)
-    cv2 = np.cos(v) ** 2
-    d = 2 - r2 * np.sin(3 * u) * np.sin(2 * v)
-    x = (r2 * cv2 * np.cos(2 * u) + np.cos(u) * np.sin(2 * v)) / d
-    y = (r2 * cv2 * np.sin(2 * u) - np.sin(u) * np.sin(2 * v)) / d
-    z = 3 * cv2 / d
-    return np.stack(np.broadcast_arrays(x, y, z), -1)
-
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from user_surfaces import boy, dini, enneper  # noqa: E402  (the tests' user-written surfaces)
 
 #: name -> (point, u range, v range, eye distance)
 SCENES = {

@@ -19,15 +19,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from user_surfaces import enneper
 
 import lgraph as lg
 from lgraph._own import ON
-
-
-def enneper(u, v):
-    return np.stack(
-        np.broadcast_arrays(u - u**3 / 3 + u * v**2, v - v**3 / 3 + v * u**2, u**2 - v**2), -1
-    )
 
 
 def helicoid(u, v):

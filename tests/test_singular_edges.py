@@ -19,52 +19,35 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from bruteforce import MeshCaster, even_stations
+from user_surfaces import boy, dini, stack
 
 import lgraph as lg
 from lgraph.surfaces.parametric._singular_edges import singular_curves
 
 
-def _stack(*c):
-    return np.stack(np.broadcast_arrays(*c), -1)
-
-
 def pseudosphere(u, t):
-    return _stack(np.cos(u) / np.cosh(t), np.sin(u) / np.cosh(t), t - np.tanh(t))
+    return stack(np.cos(u) / np.cosh(t), np.sin(u) / np.cosh(t), t - np.tanh(t))
 
 
 def pseudosphere_normal(u, t):  # x_u x x_t, exact
     s, th = 1 / np.cosh(t), np.tanh(t)
-    xu = _stack(-np.sin(u) * s, np.cos(u) * s, 0 * u)
-    xt = _stack(-np.cos(u) * s * th, -np.sin(u) * s * th, th**2)
+    xu = stack(-np.sin(u) * s, np.cos(u) * s, 0 * u)
+    xt = stack(-np.cos(u) * s * th, -np.sin(u) * s * th, th**2)
     return np.cross(xu, xt)
 
 
-def dini(u, v, a=1.0, b=0.2):
-    z = a * (np.cos(v) + np.log(np.tan(v / 2))) + b * u
-    return _stack(a * np.cos(u) * np.sin(v), a * np.sin(u) * np.sin(v), z)
-
-
 def dini_normal(u, v, a=1.0, b=0.2):
-    xu = _stack(-a * np.sin(u) * np.sin(v), a * np.cos(u) * np.sin(v), b + 0 * u)
-    xv = _stack(a * np.cos(u) * np.cos(v), a * np.sin(u) * np.cos(v), a * (np.cos(v) / np.tan(v)))
+    xu = stack(-a * np.sin(u) * np.sin(v), a * np.cos(u) * np.sin(v), b + 0 * u)
+    xv = stack(a * np.cos(u) * np.cos(v), a * np.sin(u) * np.cos(v), a * (np.cos(v) / np.tan(v)))
     return np.cross(xu, xv)
 
 
 def whitney(u, v):
-    return _stack(u * v, u, v**2)
+    return stack(u * v, u, v**2)
 
 
 def whitney_normal(u, v):
-    return _stack(2 * v, -2 * v**2, -u)
-
-
-def boy(u, v):
-    r2 = np.sqrt(2.0)
-    cv2 = np.cos(v) ** 2
-    d = 2 - r2 * np.sin(3 * u) * np.sin(2 * v)
-    x = (r2 * cv2 * np.cos(2 * u) + np.cos(u) * np.sin(2 * v)) / d
-    y = (r2 * cv2 * np.sin(2 * u) - np.sin(u) * np.sin(2 * v)) / d
-    return _stack(x, y, 3 * cv2 / d)
+    return stack(2 * v, -2 * v**2, -u)
 
 
 def _contour_residual(drawing, normal, projector):
@@ -192,7 +175,7 @@ def test_pinch_point_and_collapsed_edge_draw_no_edge():
 
 
 def sphere(u, v):
-    return _stack(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v))
+    return stack(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v))
 
 
 def test_sphere_with_undeclared_poles():
