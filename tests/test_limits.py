@@ -24,8 +24,13 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def _run_capped(code: str, limit_mb: int = 1024) -> subprocess.CompletedProcess:
     """Run ``code`` in a child Python; it must stay under ``limit_mb`` MB of
-    resident memory (checked with getrusage at its end; the address space is
-    capped at twice that as a guard against a runaway allocation)."""
+    resident memory (the child's own high-water mark at its end; the address
+    space is capped at twice that as a guard against a runaway allocation).
+
+    Not ``getrusage``'s ``ru_maxrss``: on Linux a child started by
+    fork/vfork + exec inherits the parent's peak there, so a pytest worker
+    that once held 1.4 GB made every child "use" 1.4 GB.  ``VmHWM`` in
+    ``/proc/self/status`` belongs to the child's own address space."""
     prog = textwrap.dedent(
         f"""
         import atexit, resource, sys
@@ -33,7 +38,14 @@ def _run_capped(code: str, limit_mb: int = 1024) -> subprocess.CompletedProcess:
         resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
         sys.path.insert(0, {str(ROOT)!r})
         def peak():
-            mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+            try:
+                with open("/proc/self/status") as fh:
+                    kb = next(int(l.split()[1]) for l in fh if l.startswith("VmHWM:"))
+            except (OSError, StopIteration):  # not Linux: the inherited peak is an upper bound
+                kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+                if sys.platform == "darwin":  # bytes there
+                    kb /= 1024
+            mb = kb / 1024
             print("PEAK-MB", mb, "OK" if mb < {limit_mb} else "TOO-MUCH")
         atexit.register(peak)
         """
