@@ -24,6 +24,15 @@ from pathlib import Path
 import numpy as np
 
 
+def cold_caches() -> None:
+    """Forget every cached family and surface result (not timed)."""
+    import lgraph.families.cache
+    import lgraph.surfaces._memo
+
+    lgraph.families.cache.clear()
+    lgraph.surfaces._memo.clear()
+
+
 def lgraph_figure(path: Path) -> None:
     import lgraph as lg
 
@@ -62,6 +71,7 @@ def main(argv: list[str] | None = None) -> int:
         runs = (("lgraph", lgraph_figure, a), ("matplotlib", matplotlib_figure, b))
         for _ in range(args.repeat):
             for name, fn, path in runs:
+                cold_caches()
                 t = time.perf_counter()
                 fn(path)
                 times[name].append(time.perf_counter() - t)

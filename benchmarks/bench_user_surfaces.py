@@ -6,7 +6,7 @@ Each scene is a ``lg.ParametricSurface`` written as a new user would: a numpy
 ``point(u, v)`` function only, no derivatives.  lgraph draws 12 + 12
 parameter lines and the contour with exact hidden-line removal, central view
 (azimuth 30, elevation 25), saved to PDF; a fresh surface object every run
-(nothing cached between runs).  matplotlib draws ``plot_surface`` of the same
+(caches emptied before every run).  matplotlib draws ``plot_surface`` of the same
 surface on a 50 x 50 grid, saved to PDF.  Runs alternate between the two in
 one process; we report medians and the ratio lgraph / matplotlib (issue
 target: at most 3).
@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from bench_numeric_families import cold_caches  # noqa: E402
 from user_surfaces import boy, dini, enneper  # noqa: E402  (the tests' user-written surfaces)
 
 #: name -> (point, u range, v range, eye distance)
@@ -80,6 +81,7 @@ def measure(names: list[str], repeat: int) -> dict[str, tuple[float, float, int]
                     ("lgraph", lgraph_figure, a),
                     ("matplotlib", matplotlib_figure, b),
                 ):
+                    cold_caches()
                     t = time.perf_counter()
                     fn(name, path)
                     times[key].append(time.perf_counter() - t)
