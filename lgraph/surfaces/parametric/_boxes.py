@@ -60,8 +60,8 @@ class _Hierarchy:
         self.h1, self.h2 = d.span(0) / n, d.span(1) / n
         u1 = np.linspace(*d.u1, 2 * n + 1)
         u2 = np.linspace(*d.u2, 2 * n + 1)
-        P = surface.point(*np.meshgrid(u1, u2, indexing="ij"))
-        P = np.where(np.isfinite(P), P, 0.0)
+        raw = surface.point(*np.meshgrid(u1, u2, indexing="ij"))
+        P = np.where(np.isfinite(raw), raw, 0.0)
         lo, hi = surface.bounds()
         self.size = float(np.linalg.norm(np.asarray(hi) - np.asarray(lo)))
         # leaf samples (n, n, 3, 3, 3)
@@ -71,6 +71,12 @@ class _Hierarchy:
         pad = _cell_pad(S)[..., None] + 1e-9 * self.size
         blo = S.min(axis=(2, 3)) - pad
         bhi = S.max(axis=(2, 3)) + pad
+        # every leaf's nine samples and padding, for the rays' triangle test
+        # (NaN where the surface is not defined: such leaves are ambiguous)
+        self.grid = raw
+        self.periodic = tuple(g is True for g in d.periodic)
+        self.leaf_samples = raw[ia[:, None, :, None], ia[None, :, None, :]].reshape(n * n, 9, 3)
+        self.leaf_pad = pad.reshape(n * n)
         self.levels = [(blo, bhi)]
         while blo.shape[0] > 1:
             blo = np.minimum.reduce(

@@ -19,7 +19,8 @@ import numpy as np
 from ..._own import CONTOUR, OFF, ON
 from ..._tolerance import HIT_CHUNK_RAYS, SELF_HIT_RTOL
 from ...geometry.vectors import cross as _cross
-from ._boxes import _candidates, _Hierarchy, _hierarchy, _inverse, _slab, _sub_boxes
+from ._boxes import _candidates, _cell_pad, _Hierarchy, _hierarchy
+from ._facets import facet_test, fold_free
 
 if TYPE_CHECKING:
     from .._domain import Parametrized
@@ -28,8 +29,12 @@ __all__ = ["hits"]
 
 #: extra subdivision levels where Newton's method fails in a leaf
 HIT_MAX_DEPTH = 3
-#: Newton iterations per candidate patch
+#: Newton iterations from the centre of a patch still ambiguous at the finest level
 HIT_NEWTON_STEPS = 30
+#: Newton iterations from a start on a facet (within the padding of the root):
+#: converging quadratically, it needs 3 or 4; one that has not converged by
+#: then (a root nearly double, at a grazing ray) splits its patch
+HIT_FACET_STEPS = 10
 #: a contour point's ray counts a root within this distance (relative to the
 #: surface size) of its origin as its own (double) root
 CONTOUR_SELF_RTOL = 1e-5
@@ -192,10 +197,26 @@ def hits(
     if not nray:
         return out
     H = _hierarchy(surface)
+    view = _common_view(H, o, v, smax)
+    free = None if view is None else fold_free(H.grid, *view).ravel()
     for a in range(0, nray, HIT_CHUNK_RAYS):
         b = slice(a, a + HIT_CHUNK_RAYS)
-        out[b] = _hits_chunk(surface, H, o[b], v[b], smax[b], own[b], count)
+        out[b] = _hits_chunk(surface, H, o[b], v[b], smax[b], own[b], count, view, free)
     return out
+
+
+def _common_view(H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray) -> Any:
+    """``(eye, None)`` when all rays end at one eye (a central view), ``(None,
+    direction)`` when all run one way to infinity (a parallel view), else None."""
+    if np.isfinite(smax).all():
+        ends = o + smax[:, None] * v
+        if np.ptp(ends, axis=0).max() <= 1e-9 * H.size:
+            return ends[0], None
+    elif np.isinf(smax).all():
+        w = v / np.linalg.norm(v, axis=1, keepdims=True)
+        if np.ptp(w, axis=0).max() <= 1e-12:
+            return None, w[0]
+    return None
 
 
 def _hits_chunk(
@@ -206,9 +227,18 @@ def _hits_chunk(
     smax: np.ndarray,
     own: Any,
     count: bool = False,
+    view: Any = None,
+    free: np.ndarray | None = None,
 ) -> np.ndarray:
     """Hits of one chunk of rays; with ``count``, every patch is searched
-    (not only until a ray's first root) and the distinct roots are counted."""
+    (not only until a ray's first root) and the distinct roots are counted.
+
+    Each (ray, leaf patch) pair the boxes let through is judged by its facets
+    (:func:`~lgraph.surfaces.parametric._facets.facet_test`, no evaluation of
+    the surface): Newton's method starts where a facet lies around the ray;
+    ambiguous patches, and those where Newton failed or left the patch, are
+    split in four (up to ``HIT_MAX_DEPTH`` levels); at the last level an
+    ambiguous patch is searched by Newton's method from its centre."""
     nray = len(o)
     out = np.zeros(nray, bool)
     roots_r, roots_s = [], []
@@ -218,50 +248,85 @@ def _hits_chunk(
     vnorm = np.where(vnorm > 0, vnorm, 1.0)
     s_eps = SELF_HIT_RTOL * size / vnorm
     s_self = np.where(own == CONTOUR, CONTOUR_SELF_RTOL * size / vnorm, s_eps)
+    near_self = CONTOUR_SELF_RTOL * size
     tol = 1e-10 * size
-    r, i, j, s0, s1 = _candidates(H, o, v, smax)
+    r, i, j, _, _ = _candidates(H, o, v, smax)
+    leaf = i * H.n + j
     c0 = np.stack([H.lo1 + i * H.h1, H.lo2 + j * H.h2], axis=1)
     c1 = c0 + np.array([H.h1, H.h2])
+    S = np.take(H.leaf_samples, leaf, axis=0)
+    pad = H.leaf_pad[leaf]
+    fr = None if free is None else free[leaf]
     own_uv = np.full((nray, 2), np.nan)
+
+    def newton(pr: np.ndarray, uv: np.ndarray, s: np.ndarray, steps: int) -> np.ndarray:
+        """Newton's method for pairs ``pr`` from ``(uv, s)``; records the roots
+        and returns which pairs failed (did not converge inside their patch)."""
+        rr = r[pr]
+        a, b = c0[pr], c1[pr]
+        uv, s, conv = _newton(surface, o[rr], v[rr], uv, s, 2.0 * (b - a), tol, steps, (a, b))
+        x_off = np.linalg.norm(surface.point(uv[:, 0], uv[:, 1]) - o[rr], axis=1)
+        # the own root: at the ray's origin, or (a ray grazing the surface there,
+        # where Newton creeps to it) within CONTOUR_SELF_RTOL of it; a true
+        # second root that close is found from the local quadratic form below
+        selfroot = conv & (own[rr] != OFF) & ((s < s_self[rr]) | (x_off < near_self))
+        valid = conv & ~selfroot & (s > s_eps[rr]) & (s < smax[rr])
+        out[rr[valid]] = True
+        if count:
+            roots_r.append(rr[valid])
+            roots_s.append(s[valid])
+        m = selfroot & (own[rr] == ON)
+        own_uv[rr[m]] = uv[m]
+        return ~valid & ~(conv & _in_cell(surface, uv, a, b, 1.5))
+
+    quarter = None  # after a split: which quarter of its parent each patch is
     for depth in range(HIT_MAX_DEPTH + 1):
         if not count:
             keep = ~out[r]
-            r, c0, c1, s0, s1 = r[keep], c0[keep], c1[keep], s0[keep], s1[keep]
+            r, c0, c1, S, pad = r[keep], c0[keep], c1[keep], S[keep], pad[keep]
+            fr = None if fr is None else fr[keep]
+            if quarter is None:
+                i, j = i[keep], j[keep]
+            else:
+                quarter = quarter[keep]
         if not len(r):
             break
-        uv = 0.5 * (c0 + c1)
-        s = 0.5 * (s0 + s1)
-        s = np.where(np.isfinite(s), s, s0)
-        maxstep = 2.0 * (c1 - c0)
-        uv, s, conv = _newton(surface, o[r], v[r], uv, s, maxstep, tol, cell=(c0, c1))
-        x_off = np.linalg.norm(surface.point(uv[:, 0], uv[:, 1]) - o[r], axis=1)
-        selfroot = conv & (own[r] != OFF) & ((s < s_self[r]) | (x_off < s_self[r] * vnorm[r]))
-        valid = conv & ~selfroot & (s > s_eps[r]) & (s < smax[r])
-        out[r[valid]] = True
-        if count:
-            roots_r.append(r[valid])
-            roots_s.append(s[valid])
-        m = selfroot & (own[r] == ON)
-        own_uv[r[m]] = uv[m]
+        ring = (H.grid, 2 * i, 2 * j, H.periodic) if quarter is None else None
+        pair, uv, s, near, redo = facet_test(S, pad, o[r], v[r], smax[r], c0, c1, ring, fr, quarter)
+        if count and depth < HIT_MAX_DEPTH:
+            # a patch to be split is searched in its quarters: no start here
+            go = ~redo[pair]
+            pair, uv, s, near = pair[go], uv[go], s[go], near[go]
+        if len(pair):
+            failed = newton(pair, uv, s, HIT_FACET_STEPS)
+            # split where a start inside a facet failed, or every near miss's
+            redo[pair[failed & ~near]] = True
+            missed = np.zeros(len(r), dtype=bool)
+            missed[pair[near]] = True
+            missed[pair[near & ~failed]] = False
+            redo |= missed
+        if not count:
+            redo &= ~out[r]
         if depth == HIT_MAX_DEPTH:
+            # still ambiguous at the finest level: Newton from the patch's centre
+            pr = np.flatnonzero(redo)
+            if len(pr):
+                q = S[pr] - o[r[pr], None, :]
+                z = np.einsum("pkc,pc->pk", q, v[r[pr]]) / (vnorm[r[pr]] ** 2)[:, None]
+                with np.errstate(invalid="ignore"):
+                    zm = np.where(np.isfinite(z), z, np.nan)
+                    s_mid = np.nanmean(np.where(np.isnan(zm).all(1, keepdims=True), 0.0, zm), 1)
+                newton(
+                    pr, 0.5 * (c0[pr] + c1[pr]), np.clip(s_mid, 0.0, smax[r[pr]]), HIT_NEWTON_STEPS
+                )
             break
-        # subdivide patches where Newton failed or left the patch
-        redo = ~valid & (count | ~out[r]) & ~(conv & _in_cell(surface, uv, c0, c1, 1.5))
-        if not redo.any():
+        pr = np.flatnonzero(redo)
+        if not len(pr):
             break
-        r, c0, c1 = r[redo], c0[redo], c1[redo]
-        mid = 0.5 * (c0 + c1)
-        nr = np.repeat(r, 4)
-        q0 = np.repeat(c0, 4, axis=0)
-        q1 = np.repeat(c1, 4, axis=0)
-        m4 = np.repeat(mid, 4, axis=0)
-        a = np.tile([0, 1, 0, 1], len(r)).astype(bool)
-        b = np.tile([0, 0, 1, 1], len(r)).astype(bool)
-        n0 = np.stack([np.where(a, m4[:, 0], q0[:, 0]), np.where(b, m4[:, 1], q0[:, 1])], 1)
-        n1 = np.stack([np.where(a, q1[:, 0], m4[:, 0]), np.where(b, q1[:, 1], m4[:, 1])], 1)
-        blo, bhi = _sub_boxes(surface, n0, n1, size)
-        ok, t0, t1 = _slab(o[nr], _inverse(v[nr]), blo, bhi, smax[nr])
-        r, c0, c1, s0, s1 = nr[ok], n0[ok], n1[ok], t0[ok], t1[ok]
+        r, c0, c1, S, pad, quarter_free = _split(surface, r[pr], c0[pr], c1[pr], size, view)
+        quarter = np.tile(np.arange(4), len(pr))  # the order of _split
+        if fr is not None:  # a patch without contour: its quarters too
+            fr = np.repeat(fr[pr], 4) | quarter_free
     # rays from points on the surface: the root next to the own root
     cand = np.nonzero((own == ON) & ~out & np.isfinite(own_uv[:, 0]))[0]
     if count:  # the root next to the own one may be missing while others were found
@@ -284,6 +349,31 @@ def _hits_chunk(
     if not roots_r:  # no ray met a patch box
         return np.zeros(nray, dtype=np.int64)
     return _distinct(np.concatenate(roots_r), np.concatenate(roots_s), 1e-7 * size / vnorm, nray)
+
+
+def _split(
+    surface: Parametrized, r: np.ndarray, c0: np.ndarray, c1: np.ndarray, size: float, view: Any
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, Any]:
+    """The four quarters of patches ``[c0, c1]`` (of rays ``r``): their rays,
+    corners, 3 x 3 samples (from one 5 x 5 grid a patch), paddings, and
+    (with a common ``view``) which of them hold no contour."""
+    f = np.linspace(0.0, 1.0, 5)
+    u1 = c0[:, 0, None] + (c1[:, 0] - c0[:, 0])[:, None] * f
+    u2 = c0[:, 1, None] + (c1[:, 1] - c0[:, 1])[:, None] * f
+    G = surface.point(u1[:, :, None], u2[:, None, :])  # (m, 5, 5, 3)
+    a = np.array([0, 0, 1, 1])
+    b = np.array([0, 1, 0, 1])
+    rows = 2 * a[:, None] + np.arange(3)  # (4, 3)
+    cols = 2 * b[:, None] + np.arange(3)
+    Q = G[:, rows[:, :, None], cols[:, None, :]]  # (m, 4, 3, 3, 3)
+    m = len(r)
+    Q = Q.reshape(4 * m, 3, 3, 3)
+    with np.errstate(invalid="ignore"):
+        pad = _cell_pad(Q) + 1e-9 * size
+    half = 0.5 * (c1 - c0)
+    n0 = (c0[:, None, :] + np.stack([a, b], 1)[None] * half[:, None, :]).reshape(4 * m, 2)
+    free = None if view is None else fold_free(G, *view).reshape(4 * m)
+    return np.repeat(r, 4), n0, n0 + np.repeat(half, 4, axis=0), Q.reshape(4 * m, 9, 3), pad, free
 
 
 def _distinct(r: np.ndarray, s: np.ndarray, gap: np.ndarray, nray: int) -> np.ndarray:
