@@ -123,6 +123,9 @@ class ParametricSurface(Surface):
     second_derivatives_func: Callable[..., tuple[np.ndarray, np.ndarray, np.ndarray]] | None = (
         attrs.field(default=None, kw_only=True, validator=_callable("ParametricSurface"))
     )
+    #: the Domain of the ranges, periodic and poles, built once (asked for
+    #: in every inner loop of the numeric searches)
+    _domain: Domain = attrs.field(init=False, repr=False, eq=False)
 
     @classmethod
     def from_formulas(
@@ -164,6 +167,11 @@ class ParametricSurface(Surface):
     def __attrs_post_init__(self) -> None:
         if self.func is None:
             raise TypeError("ParametricSurface: func must be callable, got NoneType")
+        object.__setattr__(
+            self,
+            "_domain",
+            Domain(self.u1_range, self.u2_range, periodic=self.periodic, poles=self.poles),
+        )
         if self.derivatives_func is not None or self.second_derivatives_func is not None:
             self._probe_derivatives()
         u1 = np.array([self.u1_range[0], sum(self.u1_range) / 2])
@@ -210,7 +218,7 @@ class ParametricSurface(Surface):
 
     @property
     def domain(self) -> Domain:
-        return Domain(self.u1_range, self.u2_range, periodic=self.periodic, poles=self.poles)
+        return self._domain
 
     def _base(self, u1: Any, u2: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         """The parameters mapped into the rectangle across glued edges

@@ -4,9 +4,10 @@ A ``HIT_LEAVES x HIT_LEAVES`` grid of parameter patches, each sampled 3 x 3
 and bounded by the box of its samples padded by a bound on how far the
 surface strays from them (second differences), and the boxes of their
 ancestors up to one root box: a bounding-volume hierarchy, built once per
-surface (cached) and refusing degenerate surfaces.  :func:`_candidates`
-descends it for many rays at once (slab tests) and returns the leaf patches a
-ray may meet, where :mod:`~lgraph.surfaces.parametric._hits` starts Newton's method.
+surface (cached, with the leaves' samples and paddings for their facets) and
+refusing degenerate surfaces.  :func:`_candidates` descends it for many rays
+at once (slab tests) and returns the leaf patches a ray may meet, which
+:mod:`~lgraph.surfaces.parametric._hits` judges by their facets.
 """
 
 from __future__ import annotations
@@ -178,13 +179,3 @@ def _candidates(H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray) -
     if METER is not None:
         METER.append((H.key, len(r)))
     return r, k // n, k % n, s0, s1
-
-
-def _sub_boxes(surface: Parametrized, c0: np.ndarray, c1: np.ndarray, size: float) -> Any:
-    """Padded boxes of parameter rectangles ``[c0, c1]`` (n, 2)."""
-    f = np.array([0.0, 0.5, 1.0])
-    u1 = c0[:, 0, None] + (c1[:, 0] - c0[:, 0])[:, None] * f
-    u2 = c0[:, 1, None] + (c1[:, 1] - c0[:, 1])[:, None] * f
-    S = surface.point(u1[:, :, None], u2[:, None, :])
-    pad = _cell_pad(S)[:, None] + 1e-9 * size
-    return S.min(axis=(1, 2)) - pad, S.max(axis=(1, 2)) + pad

@@ -1,34 +1,38 @@
 """Rays against the facets of patches: where the numeric ray test starts Newton.
 
 A patch sampled on a 3 x 3 grid is covered by 8 triangles (two in each of its
-four quarters); the surface strays from them by at most the patch's padding
-``pad`` (the bound on second differences of :func:`~lgraph.surfaces.parametric._boxes._cell_pad`).
-Seen along a ray, each triangle is a 2-D triangle around the ray's trace (the
-origin of a plane perpendicular to the ray).  Then, for every (ray, patch)
-pair, without evaluating the surface:
+four quarters, all facing one way in the parameter plane); the surface strays
+from them by at most the patch's padding ``pad`` (the second-difference
+bound of :func:`~lgraph.surfaces.parametric._boxes._cell_pad`).  Seen along a
+ray, each triangle is a 2-D triangle in the plane perpendicular to the ray,
+where the ray is the origin (its *trace*).  Then, for every (ray, patch)
+pair, without evaluating the surface (:func:`facet_test`):
 
-* a triangle *around* the trace gives a root's start: its barycentric
-  coordinates give the parameters and the distance along the ray, where
-  Newton's method converges in a few steps;
-* a patch none of whose triangles comes within ``pad`` of the trace (with the
-  depths in range) holds no root: it is dropped;
-* otherwise the patch is *ambiguous*: the trace passes within ``pad`` of a
-  triangle edge that is the patch's border or a fold (the two triangles on
-  its sides face opposite ways as seen along the ray), or of a triangle seen
-  edge-on, or a sample is not finite.  Only there can a root escape the
-  facets (a fold of the surface between samples, a root just across the
-  border); the caller subdivides the patch or searches it by Newton's method.
+* a triangle *around* the trace gives a start for Newton's method: its
+  barycentric coordinates give the parameters and the distance along the
+  ray, from where Newton converges in a few steps;
+* a patch none of whose triangles comes within ``pad`` of the trace (with
+  the depths in range) holds no root: it is dropped;
+* a near miss (within ``pad``, outside the triangle) across an inner edge
+  whose two triangles face the same way lies in the other one; across the
+  patch's border, in the triangle across, when the patches are leaves of one
+  grid of samples (``ring``) or quarters of one patch; across the domain's
+  border it gets a start of its own (from the triangle's nearest point);
+* a near miss at a *fold* (the triangles on an edge's two sides face
+  opposite ways), on a triangle seen edge-on (inradius below ``pad``), or a
+  sample that is not finite, may hide roots: the patch is split.
 
-A trace just outside a triangle but across an inner edge that is no fold lies
-inside the neighbouring triangle (or near it, and that one is judged in turn),
-so such near misses are not ambiguous.
+Folds lie on the contour: :func:`fold_free` marks the leaves where the
+contour function keeps one sign, whose image is one sheet (no fold rule).
 """
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
-__all__ = ["TRIANGLES", "facet_test"]
+__all__ = ["TRIANGLES", "Ring", "facet_test", "fold_free"]
 
 #: the 8 triangles of a patch, as indices ``3 a + b`` of its 3 x 3 samples
 #: (``a`` along ``u1``, ``b`` along ``u2``); each quarter split by its diagonal
@@ -86,22 +90,29 @@ def _outer_vertices(tri: np.ndarray) -> np.ndarray:
 _OUTER = _outer_vertices(TRIANGLES)
 
 
-def _sides(tri: np.ndarray) -> np.ndarray:
-    """For border edge ``k`` of triangle ``t``, the patch's side it lies on
-    (0: first row, 1: last row, 2: first column, 3: last column), else -1."""
-    out = np.full(tri.shape, -1)
-    for t, vs in enumerate(tri):
-        pts = [divmod(int(x), 3) for x in vs]
-        for k in range(3):
-            (a0, b0), (a1, b1) = pts[k], pts[(k + 1) % 3]
-            if _NEIGHBOUR[t, k] < 0:
-                out[t, k] = [a0 == a1 == 0, a0 == a1 == 2, b0 == b1 == 0, b0 == b1 == 2].index(True)
-    return out
+class Ring(NamedTuple):
+    """Where the patches' neighbours are: the grid of samples the patches
+    belong to, ``grid (N1, N2, 3)`` (the leaves), or one such grid a parent
+    patch, ``grid (m, N1, N2, 3)`` with ``owner`` the parent of each patch
+    (quarters); patch ``p``'s first sample is ``[gi[p], gj[p]]`` there, and
+    ``periodic`` says which parameters wrap round (a sample past the grid is
+    on the domain's border otherwise, or the parent's: no neighbour known)."""
+
+    grid: np.ndarray
+    gi: np.ndarray
+    gj: np.ndarray
+    periodic: tuple[bool, bool]
+    owner: np.ndarray | None = None
+    #: which patches of the grid hold no contour (``(n1, n2)``, or ``(m, 2,
+    #: 2)`` with ``owner``), if known
+    free: np.ndarray | None = None
+
+    def take(self, rows: np.ndarray) -> Ring:
+        """The ring of the patches ``rows``."""
+        owner = None if self.owner is None else self.owner[rows]
+        return self._replace(gi=self.gi[rows], gj=self.gj[rows], owner=owner)
 
 
-_SIDE = _sides(TRIANGLES)
-#: for quarter ``2 a + b`` of a patch, which of its sides lie on the patch's border
-_OUTER_SIDE = np.array([[a == 0, a == 1, b == 0, b == 1] for a in (0, 1) for b in (0, 1)])
 #: the sample fractions of a patch along each parameter
 _F = np.array([0.0, 0.5, 1.0])
 
@@ -114,22 +125,20 @@ def facet_test(
     smax: np.ndarray,
     c0: np.ndarray,
     c1: np.ndarray,
-    ring: tuple[np.ndarray, np.ndarray, np.ndarray, tuple[bool, bool]] | None = None,
+    ring: Ring | None = None,
     free: np.ndarray | None = None,
-    quarter: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Rays ``o + s v`` (``0 <= s <= smax``) against the facets of patches.
 
     ``S (P, 9, 3)`` are the 3 x 3 samples of patch ``[c0, c1]`` (``(P, 2)``)
     of pair ``p``, ``pad (P,)`` their padding, ``o, v (P, 3)`` and ``smax (P,)``
-    the pair's ray.  With ``ring = (grid, gi, gj, periodic)`` the patches are
-    leaves of one grid of samples ``grid (2 n + 1, 2 n + 1, 3)``, pair ``p``'s
-    first sample at ``grid[gi[p], gj[p]]`` (``periodic``: which parameters
-    wrap round): a near miss across a leaf's border then needs no start of
-    its own unless the border is the domain's (the triangle across, in the
-    neighbouring leaf, holds the trace) or the triangle across faces the
-    other way (a fold).  ``free (P,)`` marks patches known to hold no contour
-    (:func:`fold_free`): their image is one sheet, with no fold to hide roots.
+    the pair's ray.  With a :class:`Ring` (the grid of samples the patches
+    belong to), a near miss across a patch's border needs no start of its
+    own (the triangle across, in the neighbouring patch, holds the trace)
+    unless the border is the grid's (the domain's or the parent's) or the
+    triangle across faces the other way (a fold).  ``free (P,)`` marks
+    patches known to hold no contour (:func:`fold_free`): their image is one
+    sheet, with no fold to hide roots.
 
     Returns ``(pair, uv, s, near, fold)``: the starts of Newton's method
     (pair, parameters, distance along the ray; ``near``: from a near miss,
@@ -179,10 +188,8 @@ def facet_test(
     pad, c0, c1, smax, vn = pad[kept], c0[kept], c1[kept], smax[kept], vn[kept]
     if free is not None:
         free = free[kept]
-    if quarter is not None:
-        quarter = quarter[kept]
     if ring is not None:
-        ring = (ring[0], ring[1][kept], ring[2][kept], ring[3])
+        ring = ring.take(kept)
     P = len(kept)
     A, B, C = (TRIANGLES[:, i] for i in range(3))
     ax_, ay_, bx, by, cx, cy = X[:, A], Y[:, A], X[:, B], Y[:, B], X[:, C], Y[:, C]
@@ -219,13 +226,9 @@ def facet_test(
     if ring is not None:
         pp, tt, kk = np.nonzero(border)
         if len(pp):
-            domain_edge, folded = _across(ring, pp, tt, kk, sign, S, o, e1, e2)
-            border[pp, tt, kk] = domain_edge
+            edge, folded, across_free = _across(ring, pp, tt, kk, sign, S, o, e1, e2)
+            border[pp, tt, kk] = edge | ~across_free
             fold_edge[pp, tt, kk] = folded
-    elif quarter is not None:
-        # a quarter's sides inside its parent: the sibling across (same grid of
-        # samples, searched too) holds the trace
-        border &= _OUTER_SIDE[quarter][:, np.maximum(_SIDE, 0)] | (_SIDE < 0)
     fold_t = near & (flat | (sign == 0) | (violated & fold_edge).any(-1))
     if free is not None:
         # no contour in the patch: its image is one sheet, and a near miss
@@ -233,13 +236,16 @@ def facet_test(
         fold_t &= ~free[:, None]
     fold = np.array(~finite)  # a sample not finite: the patch is searched more finely
     fold[kept] = fold_t.any(1)
-    # one near start a pair: its triangle nearest to the trace
+    # near starts: a pair's triangle nearest to the trace, of each facing
+    # (at a fold, one on either sheet)
     cand = fold_t | border.any(-1)
-    score = np.where(cand, (sign[..., None] * d).min(-1), -np.inf)
-    best = np.argmax(score, axis=1)
-    nearest = np.zeros_like(cand)
-    nearest[np.arange(P), best] = cand[np.arange(P), best]
-    start = inside | nearest
+    closeness = (sign[..., None] * d).min(-1)
+    start = inside.copy()
+    rows = np.arange(P)
+    for facing in (1.0, -1.0):
+        c = cand & (sign == facing)
+        best = np.argmax(np.where(c, closeness, -np.inf), axis=1)
+        start[rows, best] |= c[rows, best]
     pair, tri = np.nonzero(start)
     near_start = ~inside[pair, tri]
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -259,7 +265,7 @@ def facet_test(
 
 
 def _across(
-    ring: tuple[np.ndarray, np.ndarray, np.ndarray, tuple[bool, bool]],
+    ring: Ring,
     pp: np.ndarray,
     tt: np.ndarray,
     kk: np.ndarray,
@@ -268,12 +274,12 @@ def _across(
     o: np.ndarray,
     e1: np.ndarray,
     e2: np.ndarray,
-) -> np.ndarray:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """For border edge ``kk`` of triangle ``tt`` of pair ``pp``: is it the
-    domain's border (no triangle across), and does the triangle across face
-    the other way (a fold)?"""
-    grid, gi, gj, periodic = ring
-    m = grid.shape[0] - 1, grid.shape[1] - 1
+    grid's border (no triangle across), does the triangle across face the
+    other way (a fold), and is the patch across known to hold no contour?"""
+    grid, gi, gj, periodic, owner, _ = ring
+    m = grid.shape[-3] - 1, grid.shape[-2] - 1
     ga = gi[pp] + _OUTER[tt, kk, 0]
     gb = gj[pp] + _OUTER[tt, kk, 1]
     ok = np.ones(len(pp), dtype=bool)
@@ -283,7 +289,7 @@ def _across(
         else:
             ok &= (g >= 0) & (g <= n)
             np.clip(g, 0, n, out=g)
-    r3 = grid[ga, gb] - o[pp]
+    r3 = (grid[ga, gb] if owner is None else grid[owner[pp], ga, gb]) - o[pp]
     a = np.take_along_axis(S[pp], TRIANGLES[tt, kk][:, None, None], 1)[:, 0] - o[pp]
     b = np.take_along_axis(S[pp], TRIANGLES[tt, (kk + 1) % 3][:, None, None], 1)[:, 0] - o[pp]
     f1, f2 = e1[pp], e2[pp]
@@ -295,7 +301,22 @@ def _across(
     # the triangle across, (b, a, r3), in the patch's orientation
     across = np.sign((ax - bx) * (ry - by) - (ay - by) * (rx - bx))
     folded = ok & ~((across == sign[pp, tt]) & np.isfinite(across))
-    return ~ok, folded
+    # the patch across (it holds the triangle's centroid): known to hold no
+    # contour?  Only then does its own start find a root beside the border
+    # (a patch with a fold is split, and its quarters no longer meet this
+    # patch's triangles)
+    if ring.free is None:
+        return ~ok, folded, np.zeros(len(pp), dtype=bool)
+    va, vb = np.divmod(TRIANGLES[tt, kk], 3)
+    wa, wb = np.divmod(TRIANGLES[tt, (kk + 1) % 3], 3)
+    ca = (gi[pp] * 3 + va + wa + _OUTER[tt, kk, 0]) / 3.0
+    cb = (gj[pp] * 3 + vb + wb + _OUTER[tt, kk, 1]) / 3.0
+    n1, n2 = ring.free.shape[-2:]
+    pa, pb = np.floor(ca / 2).astype(int), np.floor(cb / 2).astype(int)
+    pa = pa % n1 if periodic[0] else np.clip(pa, 0, n1 - 1)
+    pb = pb % n2 if periodic[1] else np.clip(pb, 0, n2 - 1)
+    nb_free = ring.free[pa, pb] if owner is None else ring.free[owner[pp], pa, pb]
+    return ~ok, folded, ok & nb_free
 
 
 def fold_free(grid: np.ndarray, eye: np.ndarray | None, toward: np.ndarray | None) -> np.ndarray:

@@ -1,12 +1,15 @@
 """The numeric ray test of a parametrized surface: the default of
 :meth:`Surface.hits <lgraph.surfaces._base.Surface.hits>`.
 
-The bounding boxes of :mod:`~lgraph.surfaces.parametric._boxes` select candidate patches;
-Newton's method on ``x(u1, u2) - (o + s v) = 0`` starts in each; patches where
-it fails or leaves the patch are subdivided (up to ``HIT_MAX_DEPTH`` levels).
-A ray from a point on the surface (``own == ON``) never counts its own root
-``s = 0``; a second root close to it (near the surface's own contour) is
-found from the local quadratic approximation of the surface:
+The bounding boxes of :mod:`~lgraph.surfaces.parametric._boxes` select
+candidate leaf patches; their facets
+(:mod:`~lgraph.surfaces.parametric._facets`) give Newton's method on
+``x(u1, u2) - (o + s v) = 0`` its starts, drop the patches that hold no
+root and mark those where roots may hide, which are split in four (up to
+``HIT_MAX_DEPTH`` levels; see docs/mathematics.rst, "The numeric ray
+test").  A ray from a point on the surface (``own == ON``) never counts its
+own root ``s = 0``; a second root close to it (near the surface's own
+contour) is found from the local quadratic approximation of the surface:
 ``s = 2 (v . N) / II(a)`` with ``J a`` the tangential part of ``v``.
 """
 
@@ -20,7 +23,7 @@ from ..._own import CONTOUR, OFF, ON
 from ..._tolerance import HIT_CHUNK_RAYS, SELF_HIT_RTOL
 from ...geometry.vectors import cross as _cross
 from ._boxes import _candidates, _cell_pad, _Hierarchy, _hierarchy
-from ._facets import facet_test, fold_free
+from ._facets import Ring, facet_test, fold_free
 
 if TYPE_CHECKING:
     from .._domain import Parametrized
@@ -59,9 +62,10 @@ def _fast_derivatives(surface: Parametrized, u1: np.ndarray, u2: np.ndarray, x: 
     # step inward at the upper end of parameters that are not glued
     s1 = np.where((not d.glued[0]) & (u1 + h1 > hi1), -h1, h1)
     s2 = np.where((not d.glued[1]) & (u2 + h2 > hi2), -h2, h2)
-    x1 = (surface.point(u1 + s1, u2) - x) / s1[:, None]
-    x2 = (surface.point(u1, u2 + s2) - x) / s2[:, None]
-    return x1, x2
+    # both neighbours in one call of the user's function
+    y = surface.point(np.concatenate([u1 + s1, u1]), np.concatenate([u2, u2 + s2]))
+    m = len(u1)
+    return (y[:m] - x) / s1[:, None], (y[m:] - x) / s2[:, None]
 
 
 def _newton(
@@ -279,20 +283,17 @@ def _hits_chunk(
         own_uv[rr[m]] = uv[m]
         return ~valid & ~(conv & _in_cell(surface, uv, a, b, 1.5))
 
-    quarter = None  # after a split: which quarter of its parent each patch is
+    leaf_free = None if free is None else free.reshape(H.n, H.n)
+    ring = Ring(H.grid, 2 * i, 2 * j, H.periodic, None, leaf_free)  # the leaves' neighbours
     for depth in range(HIT_MAX_DEPTH + 1):
         if not count:
             keep = ~out[r]
             r, c0, c1, S, pad = r[keep], c0[keep], c1[keep], S[keep], pad[keep]
             fr = None if fr is None else fr[keep]
-            if quarter is None:
-                i, j = i[keep], j[keep]
-            else:
-                quarter = quarter[keep]
+            ring = ring.take(keep)
         if not len(r):
             break
-        ring = (H.grid, 2 * i, 2 * j, H.periodic) if quarter is None else None
-        pair, uv, s, near, redo = facet_test(S, pad, o[r], v[r], smax[r], c0, c1, ring, fr, quarter)
+        pair, uv, s, near, redo = facet_test(S, pad, o[r], v[r], smax[r], c0, c1, ring, fr)
         if count and depth < HIT_MAX_DEPTH:
             # a patch to be split is searched in its quarters: no start here
             go = ~redo[pair]
@@ -323,10 +324,13 @@ def _hits_chunk(
         pr = np.flatnonzero(redo)
         if not len(pr):
             break
-        r, c0, c1, S, pad, quarter_free = _split(surface, r[pr], c0[pr], c1[pr], size, view)
-        quarter = np.tile(np.arange(4), len(pr))  # the order of _split
+        r, c0, c1, S, pad, quarter_free, G = _split(surface, r[pr], c0[pr], c1[pr], size, view)
+        q = np.tile(np.arange(4), len(pr))  # quarter 2 a + b, the order of _split
+        parent = np.repeat(np.arange(len(pr)), 4)
         if fr is not None:  # a patch without contour: its quarters too
             fr = np.repeat(fr[pr], 4) | quarter_free
+        sib = None if fr is None else fr.reshape(len(pr), 2, 2)
+        ring = Ring(G, 2 * (q // 2), 2 * (q % 2), (False, False), parent, sib)
     # rays from points on the surface: the root next to the own root
     cand = np.nonzero((own == ON) & ~out & np.isfinite(own_uv[:, 0]))[0]
     if count:  # the root next to the own one may be missing while others were found
@@ -353,10 +357,10 @@ def _hits_chunk(
 
 def _split(
     surface: Parametrized, r: np.ndarray, c0: np.ndarray, c1: np.ndarray, size: float, view: Any
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, Any]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, Any, np.ndarray]:
     """The four quarters of patches ``[c0, c1]`` (of rays ``r``): their rays,
-    corners, 3 x 3 samples (from one 5 x 5 grid a patch), paddings, and
-    (with a common ``view``) which of them hold no contour."""
+    corners, 3 x 3 samples, paddings, (with a common ``view``) which of them
+    hold no contour, and the ``5 x 5`` grid of samples of every patch."""
     f = np.linspace(0.0, 1.0, 5)
     u1 = c0[:, 0, None] + (c1[:, 0] - c0[:, 0])[:, None] * f
     u2 = c0[:, 1, None] + (c1[:, 1] - c0[:, 1])[:, None] * f
@@ -373,7 +377,8 @@ def _split(
     half = 0.5 * (c1 - c0)
     n0 = (c0[:, None, :] + np.stack([a, b], 1)[None] * half[:, None, :]).reshape(4 * m, 2)
     free = None if view is None else fold_free(G, *view).reshape(4 * m)
-    return np.repeat(r, 4), n0, n0 + np.repeat(half, 4, axis=0), Q.reshape(4 * m, 9, 3), pad, free
+    corners = n0, n0 + np.repeat(half, 4, axis=0)
+    return np.repeat(r, 4), *corners, Q.reshape(4 * m, 9, 3), pad, free, G
 
 
 def _distinct(r: np.ndarray, s: np.ndarray, gap: np.ndarray, nray: int) -> np.ndarray:
