@@ -107,6 +107,22 @@ POINTS_PREDICTION_MARGIN = 4.0
 MAX_RAY_BOXES = 2_000_000
 RAY_PROBE = 256
 
+#: Curves that oscillate faster than their ``INITIAL_SAMPLES`` resolve
+#: (aliased) refine to far more samples than their first chords predict:
+#: ``predict_points`` samples ``ALIAS_PROBE_CURVES`` curves of every family
+#: of every batch (evenly spread; exact ellipses never alias) at
+#: ``ALIAS_STEP`` times the density of the first samples; a curve whose
+#: predicted need grows more than ``ALIAS_GROWTH`` times there is aliased
+#: (a resolved curve's need stays put: within 1.14 times on the gallery),
+#: and is sampled ``ALIAS_STEP`` times denser again, ``ALIAS_LEVELS``
+#: levels in all (8193 samples a curve), at most ``ALIAS_MAX_POINTS``
+#: points a level.
+ALIAS_PROBE_CURVES = 4
+ALIAS_STEP = 4
+ALIAS_GROWTH = 1.5
+ALIAS_LEVELS = 4
+ALIAS_MAX_POINTS = 131_072
+
 #: Rays tested together against a numeric surface (bounds the working memory).
 HIT_CHUNK_RAYS = 2048
 

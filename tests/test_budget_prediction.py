@@ -199,3 +199,70 @@ def test_ordinary_numeric_scenes_are_not_refused() -> None:
         spec.loader.exec_module(module)
         scene, projector, *kwargs = module.build()
         assert scene.render(projector, **(kwargs[0] if kwargs else {})).strokes
+
+
+def _spy_prediction(m: pytest.MonkeyPatch) -> tuple[list[int], list[int]]:
+    """The predicted and the refined sample counts of every render (lists)."""
+    predicted, refined = [], []
+    predict, refine = render_module.predict_points, render_module.refine
+
+    def spy_predict(s: Any, abs_tol: Any) -> int:
+        predicted.append(predict(s, abs_tol))
+        return predicted[-1]
+
+    def spy_refine(s: Any, *args: Any) -> None:
+        refine(s, *args)
+        refined.append(len(s.t))
+
+    m.setattr(render_module, "predict_points", spy_predict)
+    m.setattr(render_module, "refine", spy_refine)
+    return predicted, refined
+
+
+@pytest.mark.parametrize("waves", [0, 100, 400, 1000])
+def test_aliased_curves_are_predicted_from_denser_samples(
+    monkeypatch: pytest.MonkeyPatch, waves: int
+) -> None:
+    """A curve that oscillates faster than its 33 first samples resolve
+    (aliased) is predicted from denser samples of it: not below half the
+    refined count (before: 1/40 of it for 1000 waves), nor above the margin
+    (the refinement, which checks midpoints of even chords, may itself stop
+    early on an aliased curve: 854 samples for the 400 waves, which need
+    about 2500; predicted 2499); a smooth one is predicted as before."""
+    predicted, refined = _spy_prediction(monkeypatch)
+    scene = lg.Scene()
+    scene.add(lg.Curve(lambda t: np.stack([t, 0.01 * np.sin(waves * t), 0.1 * t * t], -1), 0, 6.28))
+    scene.render(VIEW)
+    assert 0.5 < predicted[0] / refined[0] < tol.POINTS_PREDICTION_MARGIN, (predicted, refined)
+
+
+def test_a_smooth_scene_pays_one_probe_call_a_batch(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The aliasing probe of a scene whose curves are resolved evaluates a
+    few curves of every family once (one call for all), and none of an
+    ellipsoid's exact ellipses."""
+    from lgraph.render import sampling
+
+    calls: list[int] = []
+    evaluate = sampling.Samples.evaluate
+
+    def counted(self: Any, cid: Any, t: Any, project: Any) -> Any:
+        calls.append(len(t))
+        return evaluate(self, cid, t, project)
+
+    monkeypatch.setattr(sampling.Samples, "evaluate", counted)
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(10, 10))
+    s = sampling.Samples(
+        [(0, b, lg.Transform()) for b in scene.view_batches(scene.nodes[0], [VIEW])[0]], VIEW
+    )
+    sampling.predict_points(s, 1e-4)
+    assert calls == [32 * tol.ALIAS_STEP + 1]  # the contour; the lines are exact ellipses
+    calls.clear()
+    scene = lg.Scene()
+    scene.add(_torus(), lg.ParameterLines(10, 10), contour=False)
+    s = sampling.Samples(
+        [(0, b, lg.Transform()) for b in scene.view_batches(scene.nodes[0], [VIEW])[0]], VIEW
+    )
+    sampling.predict_points(s, 1e-4)
+    # one call: 4 curves of each of the two families, at 129 samples
+    assert calls == [2 * tol.ALIAS_PROBE_CURVES * (32 * tol.ALIAS_STEP + 1)]
