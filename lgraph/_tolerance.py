@@ -96,14 +96,16 @@ MAX_POINTS = 4_000_000
 #: each refinement pass stays the backstop.
 POINTS_PREDICTION_MARGIN = 4.0
 
-#: Most (ray, patch box) pairs the ray tests of a render's samples are
-#: predicted to meet on numeric surfaces (``lgraph.render.prediction``: a
-#: probe of ``RAY_PROBE`` first samples times the predicted sample count),
-#: refused before the first ray test: 36 to 140 us a box measured, so
-#: one to five minutes of work; the costliest gallery figures are
-#: predicted at most 18 600 (the Klein bottle; the Roman surface 14 700).
-#: The probe runs only above ``MAX_RAY_BOXES / 97`` predicted samples a
-#: numeric surface.
+#: Most (ray, patch box) pairs the ray tests of a render are predicted to
+#: meet on numeric surfaces (``lgraph.render.prediction``): the samples'
+#: (a probe of ``RAY_PROBE`` first samples times the predicted sample
+#: count), the visibility flips' (each located by K-section) and, with
+#: hidden lines, the sheets counted in front of hidden samples; refused
+#: before the work: 36 to 140 us a box measured, so one to five minutes of
+#: work; the costliest gallery figures are predicted at most 18 600 (the
+#: Klein bottle; the Roman surface 14 700).  The probe runs only above
+#: ``MAX_RAY_BOXES / 97`` predicted samples a numeric surface (half that
+#: when every hidden sample's sheets are counted).
 MAX_RAY_BOXES = 2_000_000
 RAY_PROBE = 256
 

@@ -149,26 +149,57 @@ def _bumpy(k: int = 200) -> lg.ParametricSurface:
 
 
 def test_costly_ray_tests_are_refused_before_they_run(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The refined samples' ray tests against a surface whose rays meet dozens
-    of patch boxes each are refused after the first samples' ray tests (which
-    measure the boxes a ray), before the refined ones: the 24 + 24 lines of
-    the bumpy sphere would meet about 4 million boxes (before: minutes; after:
-    refused in about 8 s).  Here with the budget lowered, so that the test is
-    quick: 2 + 2 lines."""
+    """The ray tests against a surface whose rays meet dozens of patch boxes
+    each are refused after the first samples' ray tests (which measure the
+    boxes a ray), before the refinement: the samples predicted (the bumpy
+    sphere's lines are aliased: predicted from denser samples) and the
+    visibility flips between the first samples, each located by K-section.
+    Here with the budget lowered, so that the test is quick: 2 + 2 lines."""
     from lgraph.render.prediction import RayBudgetError
 
     calls = _count_ray_tests(monkeypatch)
+
+    def reached(*args: Any, **kwargs: Any) -> None:
+        raise AssertionError("the refinement was reached before the refusal")
+
+    monkeypatch.setattr(render_module, "refine", reached)
     monkeypatch.setattr(tol, "MAX_RAY_BOXES", 20_000)
     scene = lg.Scene()
     scene.add(_bumpy(), lg.ParameterLines(2, 2), contour=False)
     with pytest.raises(RayBudgetError) as info:
         scene.render(VIEW)
-    assert len(calls) == 1  # the first samples only: the refined ones were never tested
+    assert len(calls) == 1  # the first samples only
     message = str(info.value)
-    assert "refined samples would meet about" in message
+    assert "the ray tests of" in message and "predicted samples and locating about" in message
+    assert "visibility flips" in message and "draw fewer lines" in message
     assert "the patch boxes of node 0 (ParametricSurface(...))" in message
     assert "draw fewer lines or raise tolerance" in message and "u1_range/u2_range" in message
     assert "lgraph._tolerance.MAX_RAY_BOXES" in message
+    assert "family 'u2' of node 0" in message and "oscillate faster" in message
+
+
+def test_the_bumpy_sphere_is_refused_at_the_probe(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The issue's case: 24 + 24 lines of the bumpy sphere with hidden lines
+    and no contour.  Before: predicted 6 000 samples (its lines aliased),
+    refused only after all first samples' ray tests (8.6 s on a loaded
+    machine); the 12 + 12 version rendered in 248 s.  After: predicted from
+    denser samples (64 000; refined 69 000) and refused after the probe's
+    RAY_PROBE ray tests, the message naming the sheets counted at every
+    hidden sample and the knobs (0.5-1.6 s by hand)."""
+    from lgraph.render.prediction import RayBudgetError
+
+    calls = _count_ray_tests(monkeypatch)
+    for n in (24, 12):
+        calls.clear()
+        scene = lg.Scene()
+        scene.add(_bumpy(), lg.ParameterLines(n, n), contour=False)
+        with pytest.raises(RayBudgetError) as info:
+            scene.render(VIEW, hidden_lines=True)
+        assert calls == [tol.RAY_PROBE]
+        message = str(info.value)
+        assert "predicted samples and counting the sheets in front of about" in message
+        assert "contour=True on node 0" in message and "hidden_lines=False" in message
+        assert "family 'u2' of node 0" in message and "oscillate faster" in message
 
 
 def test_many_predicted_samples_are_probed_before_the_first_ray_tests(
@@ -256,7 +287,7 @@ def test_a_smooth_scene_pays_one_probe_call_a_batch(monkeypatch: pytest.MonkeyPa
         [(0, b, lg.Transform()) for b in scene.view_batches(scene.nodes[0], [VIEW])[0]], VIEW
     )
     sampling.predict_points(s, 1e-4)
-    assert calls == [32 * tol.ALIAS_STEP + 1]  # the contour; the lines are exact ellipses
+    assert calls == [32 * (tol.ALIAS_STEP - 1)]  # the contour; the lines are exact ellipses
     calls.clear()
     scene = lg.Scene()
     scene.add(_torus(), lg.ParameterLines(10, 10), contour=False)
@@ -264,5 +295,5 @@ def test_a_smooth_scene_pays_one_probe_call_a_batch(monkeypatch: pytest.MonkeyPa
         [(0, b, lg.Transform()) for b in scene.view_batches(scene.nodes[0], [VIEW])[0]], VIEW
     )
     sampling.predict_points(s, 1e-4)
-    # one call: 4 curves of each of the two families, at 129 samples
-    assert calls == [2 * tol.ALIAS_PROBE_CURVES * (32 * tol.ALIAS_STEP + 1)]
+    # one call: 4 curves of each of the two families, at 129 samples (96 of them new)
+    assert calls == [2 * tol.ALIAS_PROBE_CURVES * 32 * (tol.ALIAS_STEP - 1)]

@@ -400,7 +400,8 @@ def predict_points(s: Samples, abs_tol: float | np.ndarray) -> int:
     need far more: a few curves of every family are sampled densely
     (:func:`_alias_scale`), and the families whose need grows with the
     density are predicted from the densest level.  ``s.predicted`` keeps the
-    prediction per curve (for the messages of the later budgets).
+    prediction per curve and ``s.alias`` the aliased curves' scale (None:
+    none is), for the later budgets (:mod:`lgraph.render.prediction`).
 
     >>> from lgraph import Curve, ParallelProjector
     >>> c = Curve(lambda t: np.stack([np.cos(t), np.sin(t), 0 * t], -1), 0, 6.28)
@@ -420,6 +421,7 @@ def predict_points(s: Samples, abs_tol: float | np.ndarray) -> int:
     need = np.where(within, np.clip(np.nan_to_num(need, nan=0.0, posinf=0.0), 0, cap), 0.0)
     m = np.clip(np.ceil(need), 1, cap).astype(np.int64)
     scale = _alias_scale(s, abs_tol, need, m)
+    s.alias = scale
     mm = m if scale is None else np.where(within, m * scale[s.cid[:-1]], 1.0)
     total = len(s.t) + int(np.ceil((mm - 1).sum()))
     s.predicted = 1.0 + np.bincount(s.cid[:-1][within], weights=mm[within], minlength=len(s.t0))
@@ -466,7 +468,8 @@ def _alias_scale(
     taken), its need the largest of any level.  A family with an aliased
     probe is scaled by its probes' counts (the first count with the need of
     the densest level) over their first counts.  Ordinary scenes pay one
-    evaluation call a batch of ``4 * 129`` points; an oscillation faster
+    evaluation call a batch of ``4 * 96`` points (each level's points hold
+    the last level's); an oscillation faster
     than the densest level (``(INITIAL_SAMPLES - 1) * ALIAS_STEP **
     ALIAS_LEVELS`` chords a curve) resolves is still predicted too low.
     """
@@ -487,26 +490,33 @@ def _alias_scale(
     est = per.copy()
     flagged = np.zeros(len(probe), dtype=bool)
     cur = np.arange(len(probe))
+    step = tol.ALIAS_STEP
+    # the last level's projections (every ``step``-th point of the next level)
+    known = s.xy.reshape(n_curves, k, 2)[probe]
     n = k
     for level in range(tol.ALIAS_LEVELS):
-        n = (n - 1) * tol.ALIAS_STEP + 1
+        n = (n - 1) * step + 1
         if len(cur) * n > tol.ALIAS_MAX_POINTS:  # the densest levels: fewer curves
-            keep = max(tol.ALIAS_MAX_POINTS // n, 1)
-            cur = cur[np.unique(np.linspace(0, len(cur) - 1, keep).astype(np.int64))]
+            keep = np.unique(np.linspace(0, len(cur) - 1, max(tol.ALIAS_MAX_POINTS // n, 1)))
+            cur, known = cur[keep.astype(np.int64)], known[keep.astype(np.int64)]
         c = probe[cur]
         frac = np.linspace(0.0, 1.0, n)
         t = (s.t0[c][:, None] + (s.t1 - s.t0)[c][:, None] * frac).ravel()
         cc = np.repeat(c, n)
-        _, _, xy = s.evaluate(cc, t, True)
+        new = np.tile(np.arange(n) % step != 0, len(c))  # the points not known yet
+        xy = np.empty((len(t), 2))
+        xy[~new] = known.reshape(-1, 2)
+        xy[new] = s.evaluate(cc[new], t[new], True)[2]
         dev = _predicted_deviation(xy, cc, t)
         with np.errstate(invalid="ignore", divide="ignore"):
             q = 1.05 * np.sqrt(dev / _at(abs_tol, cc[:-1]))
         q = np.clip(np.nan_to_num(q, nan=0.0, posinf=0.0), 0, cap)  # a jump: as at first
         got = np.append(q, 0.0).reshape(len(c), n)[:, :-1].sum(axis=1)
+        known = xy.reshape(len(c), n, 2)
         if level == 0:  # a resolved curve's need stays put (the gallery: within 1.14)
             keep = got > tol.ALIAS_GROWTH * per[cur] + 1.0
             flagged[cur] = keep
-            cur, got = cur[keep], got[keep]
+            cur, got, known = cur[keep], got[keep], known[keep]
             if not len(cur):
                 return None
         est[cur] = np.maximum(est[cur], got)
