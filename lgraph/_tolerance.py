@@ -88,7 +88,7 @@ MAX_CURVES = 100_000
 MAX_POINTS = 4_000_000
 
 #: The refined sample count predicted from the first samples' chord
-#: deviations (``lgraph.render.sampling.predict_points``) is refused before
+#: deviations (``lgraph.render.prediction.predict_points``) is refused before
 #: any ray test when it exceeds ``MAX_POINTS`` this many times: on every
 #: gallery figure the prediction was 0.91 to 1.54 times the refined count
 #: (the most without hidden lines, whose far sides are not refined), so a

@@ -271,7 +271,7 @@ def test_a_smooth_scene_pays_one_probe_call_a_batch(monkeypatch: pytest.MonkeyPa
     """The aliasing probe of a scene whose curves are resolved evaluates a
     few curves of every family once (one call for all), and none of an
     ellipsoid's exact ellipses."""
-    from lgraph.render import sampling
+    from lgraph.render import prediction, sampling
 
     calls: list[int] = []
     evaluate = sampling.Samples.evaluate
@@ -286,7 +286,7 @@ def test_a_smooth_scene_pays_one_probe_call_a_batch(monkeypatch: pytest.MonkeyPa
     s = sampling.Samples(
         [(0, b, lg.Transform()) for b in scene.view_batches(scene.nodes[0], [VIEW])[0]], VIEW
     )
-    sampling.predict_points(s, 1e-4)
+    prediction.predict_points(s, 1e-4)
     assert calls == [32 * (tol.ALIAS_STEP - 1)]  # the contour; the lines are exact ellipses
     calls.clear()
     scene = lg.Scene()
@@ -294,6 +294,6 @@ def test_a_smooth_scene_pays_one_probe_call_a_batch(monkeypatch: pytest.MonkeyPa
     s = sampling.Samples(
         [(0, b, lg.Transform()) for b in scene.view_batches(scene.nodes[0], [VIEW])[0]], VIEW
     )
-    sampling.predict_points(s, 1e-4)
+    prediction.predict_points(s, 1e-4)
     # one call: 4 curves of each of the two families, at 129 samples (96 of them new)
     assert calls == [2 * tol.ALIAS_PROBE_CURVES * 32 * (tol.ALIAS_STEP - 1)]

@@ -47,8 +47,8 @@ from .depth import occlusion_depth
 from .flips import locate_flips, seed_crossings
 from .intersections import intersection_batches, meeting_pairs
 from .occlusion import NotBatchable, Occlusion
-from .prediction import RayMeter, Work, later_work, probe_ray_tests
-from .sampling import Samples, check_points, predict_points, refine
+from .prediction import RayMeter, Work, later_work, predict_points, probe_ray_tests
+from .sampling import Samples, check_points, refine
 from .strokes import run_strokes
 from .twins import twin_groups
 from .views import Views

@@ -7,7 +7,7 @@ or winds over itself meets dozens a ray, an ordinary one a few).  Before the
 first ray tests, :func:`probe_ray_tests` tests an evenly spread probe of the
 first samples, counts the boxes their rays meet per surface, and multiplies
 by the number of rays predicted: the samples the refinement is predicted to
-reach (:func:`~lgraph.render.sampling.predict_points`) and the later
+reach (:func:`predict_points`, aliased curves probed densely) and the later
 stages' ray tests (:func:`later_work`: the sheets counted in front of
 hidden samples, the visibility flips located by K-section); a prediction
 over ``MAX_RAY_BOXES`` is refused at once with :class:`RayBudgetError`,
@@ -29,8 +29,9 @@ from .. import _tolerance as tol
 from ..surfaces._base import Surface
 from ..surfaces.parametric._boxes import set_meter
 from .flips import sections
+from .sampling import Samples, _at, _culprit, _predicted_deviation, check_points
 
-__all__ = ["RayBudgetError", "RayMeter", "Work", "later_work", "probe_ray_tests"]
+__all__ = ["RayBudgetError", "RayMeter", "Work", "later_work", "predict_points", "probe_ray_tests"]
 
 
 class RayBudgetError(ValueError):
@@ -264,6 +265,186 @@ def _family(s: Any, node: int | None) -> str:
         f"; family {str(u[i])!r} of node {node} takes {100 * share:.0f} % of its predicted "
         f"samples{aliased}"
     )
+
+
+def predict_points(s: Samples, abs_tol: float | np.ndarray) -> int:
+    """The number of samples :func:`refine` is predicted to reach, from the
+    first samples alone (before any ray test or refinement); a prediction
+    more than ``POINTS_PREDICTION_MARGIN`` times ``MAX_POINTS`` is refused
+    at once (PointBudgetError naming the family and node that would take
+    most samples).
+
+    A chord deviating ``dev`` from its curve needs about ``sqrt(dev /
+    abs_tol)`` pieces (the deviation of a smooth curve shrinks with the
+    square of the chord; ``dev`` from the second differences of the evenly
+    spaced first samples, as in :func:`refine`).  A chord's prediction is
+    capped at ``MAX_SPLIT * MAX_REFINE_PASSES`` pieces, what refinement adds
+    at most to a chord whose deviation never shrinks (a jump of the curve),
+    so jumps are not taken for smooth curves needing millions of samples.
+
+    Curves that oscillate faster than their first samples resolve (aliased)
+    need far more: a few curves of every family are sampled densely
+    (:func:`_alias_scale`), and the families whose need grows with the
+    density are predicted from the densest level.  ``s.predicted`` keeps the
+    prediction per curve and ``s.alias`` the aliased curves' scale (None:
+    none is), for the later budgets (:mod:`lgraph.render.prediction`).
+
+    >>> from lgraph import Curve, ParallelProjector, Transform
+    >>> c = Curve(lambda t: np.stack([np.cos(t), np.sin(t), 0 * t], -1), 0, 6.28)
+    >>> s = Samples([(0, c.batch(), Transform())], ParallelProjector(direction=(0, 0, 1)))
+    >>> predict_points(s, 1e-6)  # refine(s, 1e-6) then gives 4097
+    2337
+    >>> w = Curve(lambda t: np.stack([t, 0.01 * np.sin(400 * t), 0 * t], -1), 0, 6.28)
+    >>> s = Samples([(0, w.batch(), Transform())], ParallelProjector(direction=(0, 0, 1)))
+    >>> predict_points(s, 1e-5) > 15000  # 400 waves: refine(s, 1e-5) then gives 22923
+    True
+    """
+    dev = _predicted_deviation(s.xy, s.cid, s.t)
+    within = s.cid[1:] == s.cid[:-1]
+    cap = tol.MAX_SPLIT * tol.MAX_REFINE_PASSES
+    with np.errstate(invalid="ignore", divide="ignore"):
+        need = 1.05 * np.sqrt(dev / _at(abs_tol, s.cid[:-1]))
+    need = np.where(within, np.clip(np.nan_to_num(need, nan=0.0, posinf=0.0), 0, cap), 0.0)
+    m = np.clip(np.ceil(need), 1, cap).astype(np.int64)
+    scale = _alias_scale(s, abs_tol, need, m)
+    s.alias = scale
+    mm = m if scale is None else np.where(within, m * scale[s.cid[:-1]], 1.0)
+    total = len(s.t) + int(np.ceil((mm - 1).sum()))
+    s.predicted = 1.0 + np.bincount(s.cid[:-1][within], weights=mm[within], minlength=len(s.t0))
+    if total > tol.POINTS_PREDICTION_MARGIN * tol.MAX_POINTS:
+        idx = np.flatnonzero(mm > 1)
+        culprit = _culprit(s, idx, mm[idx])
+        if scale is not None and _culprit_aliased(s, idx, mm[idx], scale):
+            culprit = culprit[:-1] + _ALIASED + ")"
+        check_points(total, refining=True, culprit=culprit, predicted=True)
+    return total
+
+
+_ALIASED = (
+    "; its curves oscillate faster than their first "
+    f"{tol.INITIAL_SAMPLES} samples resolve, predicted from denser samples of a few of them"
+)
+
+
+def _culprit_aliased(s: Samples, idx: np.ndarray, m: np.ndarray, scale: np.ndarray) -> bool:
+    """Whether the part taking most new samples of chords ``idx`` is aliased
+    (its prediction scaled by :func:`_alias_scale`)."""
+    part = s.part[s.cid[idx]]
+    p = int(np.argmax(np.bincount(part, weights=m - 1, minlength=len(s.parts))))
+    rows = s.cid[idx][part == p]
+    return bool(np.any(scale[rows] > 1))
+
+
+def _alias_scale(
+    s: Samples, abs_tol: float | np.ndarray, need: np.ndarray, m: np.ndarray
+) -> np.ndarray | None:
+    """Per curve, how many times more samples it needs than its first
+    samples' chords predict (``need``: pieces a chord needs, ``m``: their
+    ceilings), or None when no probed family is aliased.
+
+    ``ALIAS_PROBE_CURVES`` curves of every family of every batch (evenly
+    spread; not exact ellipses, which cannot alias) are sampled
+    ``ALIAS_STEP`` times as densely as at first, in one evaluation call a
+    batch.  The need of a curve (the sum of ``need`` over its chords) stays
+    about the same at any density once the curve is resolved (on the
+    gallery: within 1.14 times); a curve whose need grows more than
+    ``ALIAS_GROWTH`` times is aliased, and is sampled ``ALIAS_STEP`` times
+    denser again, ``ALIAS_LEVELS`` levels in all (an aliased sampling may
+    look smooth at one density and not at the next, so every level is
+    taken), its need the largest of any level.  A family with an aliased
+    probe is scaled by its probes' counts (the first count with the need of
+    the densest level) over their first counts.  Ordinary scenes pay one
+    evaluation call a batch of ``4 * 96`` points (each level's points hold
+    the last level's); an oscillation faster
+    than the densest level (``(INITIAL_SAMPLES - 1) * ALIAS_STEP **
+    ALIAS_LEVELS`` chords a curve) resolves is still predicted too low.
+    """
+    k = tol.INITIAL_SAMPLES
+    n_curves = len(s.t0)
+    if len(s.t) != n_curves * k:  # not the first samples
+        return None
+    cand = s.t1 > s.t0
+    if s.ellipses is not None:
+        cand &= ~np.isfinite(s.ellipses[:, 0, 0])
+    if not cand.any():
+        return None
+    fam, n_fam = _family_codes(s)
+    probe = _probe_curves(fam, cand)
+    per = np.append(need, 0.0).reshape(n_curves, k)[:, :-1].sum(axis=1)[probe]
+    first = 1 + np.append(m, 0).reshape(n_curves, k)[:, :-1].sum(axis=1)[probe]
+    cap = tol.MAX_SPLIT * tol.MAX_REFINE_PASSES
+    est = per.copy()
+    flagged = np.zeros(len(probe), dtype=bool)
+    cur = np.arange(len(probe))
+    step = tol.ALIAS_STEP
+    # the last level's projections (every ``step``-th point of the next level)
+    known = s.xy.reshape(n_curves, k, 2)[probe]
+    n = k
+    for level in range(tol.ALIAS_LEVELS):
+        n = (n - 1) * step + 1
+        if len(cur) * n > tol.ALIAS_MAX_POINTS:  # the densest levels: fewer curves
+            keep = np.unique(np.linspace(0, len(cur) - 1, max(tol.ALIAS_MAX_POINTS // n, 1)))
+            cur, known = cur[keep.astype(np.int64)], known[keep.astype(np.int64)]
+        c = probe[cur]
+        frac = np.linspace(0.0, 1.0, n)
+        t = (s.t0[c][:, None] + (s.t1 - s.t0)[c][:, None] * frac).ravel()
+        cc = np.repeat(c, n)
+        new = np.tile(np.arange(n) % step != 0, len(c))  # the points not known yet
+        xy = np.empty((len(t), 2))
+        xy[~new] = known.reshape(-1, 2)
+        xy[new] = s.evaluate(cc[new], t[new], True)[2]
+        dev = _predicted_deviation(xy, cc, t)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            q = 1.05 * np.sqrt(dev / _at(abs_tol, cc[:-1]))
+        q = np.clip(np.nan_to_num(q, nan=0.0, posinf=0.0), 0, cap)  # a jump: as at first
+        got = np.append(q, 0.0).reshape(len(c), n)[:, :-1].sum(axis=1)
+        known = xy.reshape(len(c), n, 2)
+        if level == 0:  # a resolved curve's need stays put (the gallery: within 1.14)
+            keep = got > tol.ALIAS_GROWTH * per[cur] + 1.0
+            flagged[cur] = keep
+            cur, got, known = cur[keep], got[keep], known[keep]
+            if not len(cur):
+                return None
+        est[cur] = np.maximum(est[cur], got)
+    if not flagged.any():
+        return None
+    counts = np.where(flagged, first + np.maximum(est - per, 0.0), first)
+    f = fam[probe]
+    aliased = np.bincount(f, weights=flagged, minlength=n_fam) > 0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.bincount(f, weights=counts, minlength=n_fam) / np.bincount(
+            f, weights=first, minlength=n_fam
+        )
+    ratio = np.where(aliased & (ratio > 1), ratio, 1.0)
+    return ratio[fam]
+
+
+def _family_codes(s: Samples) -> tuple[np.ndarray, int]:
+    """Per curve, a code of its (batch part, family), and the number of codes."""
+    fam = np.empty(len(s.t0), dtype=np.int64)
+    n = 0
+    for part in s.parts:
+        rows = slice(part.first, part.first + len(part.batch))
+        names = part.batch.curve_family
+        if names is None:
+            fam[rows] = n
+            n += 1
+        else:
+            u, inverse = np.unique(np.asarray(names, dtype=object), return_inverse=True)
+            fam[rows] = n + inverse.ravel()
+            n += len(u)
+    return fam, n
+
+
+def _probe_curves(fam: np.ndarray, cand: np.ndarray) -> np.ndarray:
+    """Up to ``ALIAS_PROBE_CURVES`` curves of every family code ``fam`` among
+    the curves ``cand`` (a mask), evenly spread; sorted."""
+    c = np.flatnonzero(cand)
+    c = c[np.argsort(fam[c], kind="stable")]
+    _, start, count = np.unique(fam[c], return_index=True, return_counts=True)
+    p = tol.ALIAS_PROBE_CURVES
+    pos = start[:, None] + ((np.arange(p) + 0.5) * count[:, None] / p).astype(np.int64)
+    return np.unique(c[pos])
 
 
 def _numeric(surface: Any) -> bool:
