@@ -88,7 +88,7 @@ MAX_CURVES = 100_000
 MAX_POINTS = 4_000_000
 
 #: The refined sample count predicted from the first samples' chord
-#: deviations (``lgraph.render.sampling.predict_points``) is refused before
+#: deviations (``lgraph.render.prediction.predict_points``) is refused before
 #: any ray test when it exceeds ``MAX_POINTS`` this many times: on every
 #: gallery figure the prediction was 0.91 to 1.54 times the refined count
 #: (the most without hidden lines, whose far sides are not refined), so a
@@ -96,16 +96,34 @@ MAX_POINTS = 4_000_000
 #: each refinement pass stays the backstop.
 POINTS_PREDICTION_MARGIN = 4.0
 
-#: Most (ray, patch box) pairs the ray tests of a render's samples are
-#: predicted to meet on numeric surfaces (``lgraph.render.prediction``: a
-#: probe of ``RAY_PROBE`` first samples times the predicted sample count),
-#: refused before the first ray test: 36 to 140 us a box measured, so
-#: one to five minutes of work; the costliest gallery figures are
-#: predicted at most 18 600 (the Klein bottle; the Roman surface 14 700).
-#: The probe runs only above ``MAX_RAY_BOXES / 97`` predicted samples a
-#: numeric surface.
+#: Most (ray, patch box) pairs the ray tests of a render are predicted to
+#: meet on numeric surfaces (``lgraph.render.prediction``): the samples'
+#: (a probe of ``RAY_PROBE`` first samples times the predicted sample
+#: count), the visibility flips' (each located by K-section) and, with
+#: hidden lines, the sheets counted in front of hidden samples; refused
+#: before the work: 36 to 140 us a box measured, so one to five minutes of
+#: work; the costliest gallery figures are predicted at most 18 600 (the
+#: Klein bottle; the Roman surface 14 700).  The probe runs only above
+#: ``MAX_RAY_BOXES / 97`` predicted samples a numeric surface (half that
+#: when every hidden sample's sheets are counted).
 MAX_RAY_BOXES = 2_000_000
 RAY_PROBE = 256
+
+#: Curves that oscillate faster than their ``INITIAL_SAMPLES`` resolve
+#: (aliased) refine to far more samples than their first chords predict:
+#: ``predict_points`` samples ``ALIAS_PROBE_CURVES`` curves of every family
+#: of every batch (evenly spread; exact ellipses never alias) at
+#: ``ALIAS_STEP`` times the density of the first samples; a curve whose
+#: predicted need grows more than ``ALIAS_GROWTH`` times there is aliased
+#: (a resolved curve's need stays put: within 1.14 times on the gallery),
+#: and is sampled ``ALIAS_STEP`` times denser again, ``ALIAS_LEVELS``
+#: levels in all (8193 samples a curve), at most ``ALIAS_MAX_POINTS``
+#: points a level.
+ALIAS_PROBE_CURVES = 4
+ALIAS_STEP = 4
+ALIAS_GROWTH = 1.5
+ALIAS_LEVELS = 4
+ALIAS_MAX_POINTS = 131_072
 
 #: Rays tested together against a numeric surface (bounds the working memory).
 HIT_CHUNK_RAYS = 2048

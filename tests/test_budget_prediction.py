@@ -149,26 +149,57 @@ def _bumpy(k: int = 200) -> lg.ParametricSurface:
 
 
 def test_costly_ray_tests_are_refused_before_they_run(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The refined samples' ray tests against a surface whose rays meet dozens
-    of patch boxes each are refused after the first samples' ray tests (which
-    measure the boxes a ray), before the refined ones: the 24 + 24 lines of
-    the bumpy sphere would meet about 4 million boxes (before: minutes; after:
-    refused in about 8 s).  Here with the budget lowered, so that the test is
-    quick: 2 + 2 lines."""
+    """The ray tests against a surface whose rays meet dozens of patch boxes
+    each are refused after the first samples' ray tests (which measure the
+    boxes a ray), before the refinement: the samples predicted (the bumpy
+    sphere's lines are aliased: predicted from denser samples) and the
+    visibility flips between the first samples, each located by K-section.
+    Here with the budget lowered, so that the test is quick: 2 + 2 lines."""
     from lgraph.render.prediction import RayBudgetError
 
     calls = _count_ray_tests(monkeypatch)
+
+    def reached(*args: Any, **kwargs: Any) -> None:
+        raise AssertionError("the refinement was reached before the refusal")
+
+    monkeypatch.setattr(render_module, "refine", reached)
     monkeypatch.setattr(tol, "MAX_RAY_BOXES", 20_000)
     scene = lg.Scene()
     scene.add(_bumpy(), lg.ParameterLines(2, 2), contour=False)
     with pytest.raises(RayBudgetError) as info:
         scene.render(VIEW)
-    assert len(calls) == 1  # the first samples only: the refined ones were never tested
+    assert len(calls) == 1  # the first samples only
     message = str(info.value)
-    assert "refined samples would meet about" in message
+    assert "the ray tests of" in message and "predicted samples and locating about" in message
+    assert "visibility flips" in message and "draw fewer lines" in message
     assert "the patch boxes of node 0 (ParametricSurface(...))" in message
     assert "draw fewer lines or raise tolerance" in message and "u1_range/u2_range" in message
     assert "lgraph._tolerance.MAX_RAY_BOXES" in message
+    assert "family 'u2' of node 0" in message and "oscillate faster" in message
+
+
+def test_the_bumpy_sphere_is_refused_at_the_probe(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The issue's case: 24 + 24 lines of the bumpy sphere with hidden lines
+    and no contour.  Before: predicted 6 000 samples (its lines aliased),
+    refused only after all first samples' ray tests (8.6 s on a loaded
+    machine); the 12 + 12 version rendered in 248 s.  After: predicted from
+    denser samples (64 000; refined 69 000) and refused after the probe's
+    RAY_PROBE ray tests, the message naming the sheets counted at every
+    hidden sample and the knobs (0.5-1.6 s by hand)."""
+    from lgraph.render.prediction import RayBudgetError
+
+    calls = _count_ray_tests(monkeypatch)
+    for n in (24, 12):
+        calls.clear()
+        scene = lg.Scene()
+        scene.add(_bumpy(), lg.ParameterLines(n, n), contour=False)
+        with pytest.raises(RayBudgetError) as info:
+            scene.render(VIEW, hidden_lines=True)
+        assert calls == [tol.RAY_PROBE]
+        message = str(info.value)
+        assert "predicted samples and counting the sheets in front of about" in message
+        assert "contour=True on node 0" in message and "hidden_lines=False" in message
+        assert "family 'u2' of node 0" in message and "oscillate faster" in message
 
 
 def test_many_predicted_samples_are_probed_before_the_first_ray_tests(
@@ -199,3 +230,70 @@ def test_ordinary_numeric_scenes_are_not_refused() -> None:
         spec.loader.exec_module(module)
         scene, projector, *kwargs = module.build()
         assert scene.render(projector, **(kwargs[0] if kwargs else {})).strokes
+
+
+def _spy_prediction(m: pytest.MonkeyPatch) -> tuple[list[int], list[int]]:
+    """The predicted and the refined sample counts of every render (lists)."""
+    predicted, refined = [], []
+    predict, refine = render_module.predict_points, render_module.refine
+
+    def spy_predict(s: Any, abs_tol: Any) -> int:
+        predicted.append(predict(s, abs_tol))
+        return predicted[-1]
+
+    def spy_refine(s: Any, *args: Any) -> None:
+        refine(s, *args)
+        refined.append(len(s.t))
+
+    m.setattr(render_module, "predict_points", spy_predict)
+    m.setattr(render_module, "refine", spy_refine)
+    return predicted, refined
+
+
+@pytest.mark.parametrize("waves", [0, 100, 400, 1000])
+def test_aliased_curves_are_predicted_from_denser_samples(
+    monkeypatch: pytest.MonkeyPatch, waves: int
+) -> None:
+    """A curve that oscillates faster than its 33 first samples resolve
+    (aliased) is predicted from denser samples of it: not below half the
+    refined count (before: 1/40 of it for 1000 waves), nor above the margin
+    (the refinement, which checks midpoints of even chords, may itself stop
+    early on an aliased curve: 854 samples for the 400 waves, which need
+    about 2500; predicted 2499); a smooth one is predicted as before."""
+    predicted, refined = _spy_prediction(monkeypatch)
+    scene = lg.Scene()
+    scene.add(lg.Curve(lambda t: np.stack([t, 0.01 * np.sin(waves * t), 0.1 * t * t], -1), 0, 6.28))
+    scene.render(VIEW)
+    assert 0.5 < predicted[0] / refined[0] < tol.POINTS_PREDICTION_MARGIN, (predicted, refined)
+
+
+def test_a_smooth_scene_pays_one_probe_call_a_batch(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The aliasing probe of a scene whose curves are resolved evaluates a
+    few curves of every family once (one call for all), and none of an
+    ellipsoid's exact ellipses."""
+    from lgraph.render import prediction, sampling
+
+    calls: list[int] = []
+    evaluate = sampling.Samples.evaluate
+
+    def counted(self: Any, cid: Any, t: Any, project: Any) -> Any:
+        calls.append(len(t))
+        return evaluate(self, cid, t, project)
+
+    monkeypatch.setattr(sampling.Samples, "evaluate", counted)
+    scene = lg.Scene()
+    scene.add(lg.Sphere(1), lg.ParameterLines(10, 10))
+    s = sampling.Samples(
+        [(0, b, lg.Transform()) for b in scene.view_batches(scene.nodes[0], [VIEW])[0]], VIEW
+    )
+    prediction.predict_points(s, 1e-4)
+    assert calls == [32 * (tol.ALIAS_STEP - 1)]  # the contour; the lines are exact ellipses
+    calls.clear()
+    scene = lg.Scene()
+    scene.add(_torus(), lg.ParameterLines(10, 10), contour=False)
+    s = sampling.Samples(
+        [(0, b, lg.Transform()) for b in scene.view_batches(scene.nodes[0], [VIEW])[0]], VIEW
+    )
+    prediction.predict_points(s, 1e-4)
+    # one call: 4 curves of each of the two families, at 129 samples (96 of them new)
+    assert calls == [2 * tol.ALIAS_PROBE_CURVES * 32 * (tol.ALIAS_STEP - 1)]

@@ -47,8 +47,8 @@ from .depth import occlusion_depth
 from .flips import locate_flips, seed_crossings
 from .intersections import intersection_batches, meeting_pairs
 from .occlusion import NotBatchable, Occlusion
-from .prediction import RayMeter, probe_ray_tests
-from .sampling import Samples, check_points, predict_points, refine
+from .prediction import RayMeter, Work, later_work, predict_points, probe_ray_tests
+from .sampling import Samples, check_points, refine
 from .strokes import run_strokes
 from .twins import twin_groups
 from .views import Views
@@ -300,28 +300,49 @@ def _render(
     predicted = predict_points(s, chord_tol)
     shared = _shared_owners(s, partner, len(nodes))
     vis = Occlusion(nodes, views, shared)
+    # with hidden lines, a hiding surface asked one by one that draws no
+    # contour leaves a gap in the net, and so do surfaces that may meet
+    # without their intersection drawn: then every hidden sample's sheets
+    # are counted
+    every = any(not nodes[j].contour for j in vis.twins)
+    every |= any(nodes[a].hides and nodes[b].hides for a, b in set(meeting) - set(drawn_meetings))
     meter = RayMeter(nodes)  # the patch boxes a ray meets on numeric surfaces
-    probe_ray_tests(s, vis, meter, predicted, _classify)
+
+    def later(rows: np.ndarray | None = None, **kw: Any) -> Callable[[], list[Work]]:
+        """The later stages' ray tests predicted (counting sheets, locating
+        flips), computed only when a check needs them."""
+        return lambda: later_work(s, vis, nodes, hidden_lines, every, tested=rows, **kw)
+
+    def probed(rows: np.ndarray) -> list[Work]:
+        return later(rows, samples=predicted)()
+
+    probe_ray_tests(s, vis, meter, predicted, _classify, probed, hidden_lines and every)
     meter.run(_classify, s, vis)
+    first: list[Work] = []  # the flips between the first samples, kept for later
+
+    def at_first() -> list[Work]:
+        first[:] = later(samples=predicted)()
+        return first
+
+    meter.check(predicted, "predicted", at_first, s)
     seed_crossings(s, vis)
     settled = None if hidden_lines else _self_hidden(s, vis)
     refine(s, chord_tol, settled)
-    meter.check(int(s.fresh.sum()), "refined")  # before their ray tests
+    flips = [w for w in first if w.kind == "flips"]  # before the refined samples' ray tests:
+
+    def at_refined() -> list[Work]:
+        return [*later(np.flatnonzero(~s.fresh), samples=len(s.t))(), *flips]
+
+    meter.check(int(s.fresh.sum()), "refined", at_refined, s)
     _classify(s, vis)
     # a short piece between two samples: chords crossed twice by the net, or
     # passed closer than the two polylines' tolerances
     if seed_net_crossings(s, vis, 2 * np.asarray(abs_tol)):
         _classify(s, vis)
+    meter.check(0, "", later(exact=True), s)  # the flips counted, before they are located
     locate_flips(s, vis)
     # hidden runs split where the number of sheets in front changes
     if hidden_lines:
-        # a hiding surface asked one by one that draws no contour leaves a gap
-        # in the net, and so do surfaces that may meet without their
-        # intersection drawn: then every hidden sample is counted
-        every = any(not nodes[j].contour for j in vis.twins)
-        every |= any(
-            nodes[a].hides and nodes[b].hides for a, b in set(meeting) - set(drawn_meetings)
-        )
         depth = occlusion_depth(s, vis, every, diag)
     else:
         depth = s.hidden.astype(np.int64)

@@ -29,7 +29,6 @@ __all__ = [
     "Samples",
     "check_points",
     "merge",
-    "predict_points",
     "refine",
 ]
 
@@ -338,7 +337,8 @@ class PointBudgetError(ValueError):
     Raised before the initial sampling when the curves' first samples alone
     exceed the budget; before any ray test when the deviations of the first
     samples' chords predict a refined count more than
-    ``POINTS_PREDICTION_MARGIN`` times the budget (:func:`predict_points`);
+    ``POINTS_PREDICTION_MARGIN`` times the budget
+    (:func:`~lgraph.render.prediction.predict_points`);
     and, the exact backstop, before every refinement pass that would exceed
     it.  The message names the family and node that would take most of the
     new samples and the knob that helps (the tolerance, the line counts,
@@ -351,8 +351,9 @@ def check_points(
 ) -> None:
     """Refuse, before any work, a sampling that would hold more than
     ``MAX_POINTS`` points (the render's memory budget); ``predicted``: ``n``
-    is the estimate of :func:`predict_points`, refused when it is more than
-    ``POINTS_PREDICTION_MARGIN`` times the budget.
+    is the estimate of :func:`~lgraph.render.prediction.predict_points`,
+    refused when it is more than ``POINTS_PREDICTION_MARGIN`` times the
+    budget.
 
     >>> check_points(10)
     >>> check_points(10**9)  # doctest: +IGNORE_EXCEPTION_DETAIL
@@ -379,39 +380,6 @@ def check_points(
             f"Scene.render: the curves {need}{culprit}; the limit is "
             f"{tol.MAX_POINTS} (lgraph._tolerance.MAX_POINTS); {why}"
         )
-
-
-def predict_points(s: Samples, abs_tol: float | np.ndarray) -> int:
-    """The number of samples :func:`refine` is predicted to reach, from the
-    first samples alone (before any ray test or refinement); a prediction
-    more than ``POINTS_PREDICTION_MARGIN`` times ``MAX_POINTS`` is refused
-    at once (PointBudgetError naming the family and node that would take
-    most samples).
-
-    A chord deviating ``dev`` from its curve needs about ``sqrt(dev /
-    abs_tol)`` pieces (the deviation of a smooth curve shrinks with the
-    square of the chord; ``dev`` from the second differences of the evenly
-    spaced first samples, as in :func:`refine`).  A chord's prediction is
-    capped at ``MAX_SPLIT * MAX_REFINE_PASSES`` pieces, what refinement adds
-    at most to a chord whose deviation never shrinks (a jump of the curve),
-    so jumps are not taken for smooth curves needing millions of samples.
-
-    >>> from lgraph import Curve, ParallelProjector
-    >>> c = Curve(lambda t: np.stack([np.cos(t), np.sin(t), 0 * t], -1), 0, 6.28)
-    >>> s = Samples([(0, c.batch(), Transform())], ParallelProjector(direction=(0, 0, 1)))
-    >>> predict_points(s, 1e-6)  # refine(s, 1e-6) then gives 4097
-    2337
-    """
-    dev = _predicted_deviation(s.xy, s.cid, s.t)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        m = np.ceil(1.05 * np.sqrt(dev / _at(abs_tol, s.cid[:-1])))
-    m = np.clip(np.nan_to_num(m, nan=1.0, posinf=1.0), 1, tol.MAX_SPLIT * tol.MAX_REFINE_PASSES)
-    m = np.where(s.cid[1:] == s.cid[:-1], m, 1).astype(np.int64)
-    total = len(s.t) + int((m - 1).sum())
-    if total > tol.POINTS_PREDICTION_MARGIN * tol.MAX_POINTS:
-        idx = np.flatnonzero(m > 1)
-        check_points(total, refining=True, culprit=_culprit(s, idx, m[idx]), predicted=True)
-    return total
 
 
 def _culprit(s: Samples, idx: np.ndarray, m: np.ndarray) -> str:
