@@ -100,6 +100,31 @@ class CurveRef:
         return np.where(t > self.t1, t - (self.t1 - self.t0), t)
 
 
+def made_curve_ref(
+    batch: Any,
+    index: int,
+    transform: Any,
+    projector: Any,
+    t: np.ndarray,
+    t0: float,
+    t1: float,
+    closed: bool,
+) -> CurveRef:
+    """``CurveRef(...)`` for ``t0``, ``t1`` already floats and ``closed`` a
+    bool, without its converters (one a stroke of every render)."""
+    r = object.__new__(CurveRef)
+    _set = object.__setattr__
+    _set(r, "batch", batch)
+    _set(r, "index", index)
+    _set(r, "transform", transform)
+    _set(r, "projector", projector)
+    _set(r, "t", t)
+    _set(r, "t0", t0)
+    _set(r, "t1", t1)
+    _set(r, "closed", closed)
+    return r
+
+
 def unwrapped(t: np.ndarray, lens: np.ndarray, period: np.ndarray) -> np.ndarray:
     """Curve parameters ``t`` of consecutive strokes (``lens[k]`` samples
     each, on a curve of ``period[k]``) made increasing along each stroke:

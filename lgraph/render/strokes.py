@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..output.bezier import CurveRef, unwrapped
-from ..output.drawing import Stroke
+from ..output.bezier import made_curve_ref, unwrapped
+from ..output.drawing import Stroke, made_stroke
 from ..scene.style import Style
 from .sampling import Samples
 
@@ -130,18 +130,13 @@ def run_strokes(
             if style is None:
                 style = styles[key] = batch.style or nodes[node].style_for(family)
         # the exact curve of the stroke (lgraph.output.bezier: curves="bezier" output)
-        curve = CurveRef(batch, c - first_id, transform, projectors[v], tus[k], t0, t1, closed)
+        # (made without the classes' converters: the values are of their types)
+        curve = made_curve_ref(
+            batch, c - first_id, transform, projectors[v], tus[k], t0, t1, closed
+        )
         out[v].append(
-            Stroke(
-                xy[k],
-                xyz[k],
-                None if no_uv else uv[k],
-                not dep,
-                family,
-                surface,
-                style,
-                dep,
-                curve=curve,
+            made_stroke(
+                xy[k], xyz[k], None if no_uv else uv[k], not dep, family, surface, style, dep, curve
             )
         )
     return out

@@ -115,6 +115,9 @@ def runs(keys: np.ndarray) -> Iterator[tuple[int, np.ndarray | slice]]:
     n = len(keys)
     if not n:
         return
+    if keys[0] == keys[-1] and (keys == keys[0]).all():  # one key (a lone batch, a lone view)
+        yield int(keys[0]), slice(0, n)
+        return
     if np.all(keys[1:] >= keys[:-1]):
         order, ks = None, keys
     else:
