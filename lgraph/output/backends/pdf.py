@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from ._common import background_rgb, check_options, curve_options, fmt_num, page_runs
+from ._common import background_rgb, check_options, curve_options, fmt_num, page_run_points
 
 __all__ = ["write_pdf", "new_canvas", "draw_page"]
 
@@ -189,12 +189,15 @@ def draw_page(
     # (which contain no '%') only where the style changes.
     canvas.addLiteral("q")  # the strokes' scaling matrix ends before the labels
     if deviation is None:
-        runs = [(pts, s, False) for pts, s in page_runs(drawing)]
+        # the runs lie in one array, in order: its values are the page's
+        flat, bounds, owners = page_run_points(drawing)
+        runs = [(flat[a:b], s, False) for (a, b), s in zip(bounds, owners)]
+        values = flat.ravel() if runs else np.empty(0)
     else:
         from ..bezier import page_curve_runs
 
         runs = page_curve_runs(drawing, deviation)
-    values = np.concatenate([pts.ravel() for pts, _, _ in runs]) if runs else np.empty(0)
+        values = np.concatenate([pts.ravel() for pts, _, _ in runs]) if runs else np.empty(0)
     unit = 10.0**precision
     if len(values) and np.abs(values).max() * unit >= _INT_LIMIT:  # a huge page
         unit, f = 1.0, f"%.{precision}f"
