@@ -42,7 +42,12 @@ def run_strokes(
     starts = np.concatenate([[0], brk])
     ends = np.concatenate([brk, [n]])
     # projected extent of every run at once
-    extent = np.max(np.maximum.reduceat(s.xy, starts) - np.minimum.reduceat(s.xy, starts), axis=1)
+    # (column by column: numpy reduces an (n, 2) array along an axis slowly)
+    x, y = s.xy[:, 0], s.xy[:, 1]
+    extent = np.maximum(
+        np.maximum.reduceat(x, starts) - np.minimum.reduceat(x, starts),
+        np.maximum.reduceat(y, starts) - np.minimum.reduceat(y, starts),
+    )
     run_cid, run_depth = s.cid[starts], depth[starts]
     run_hidden = run_depth > 0
     new_curve = run_cid[1:] != run_cid[:-1]

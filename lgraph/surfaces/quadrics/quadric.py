@@ -253,7 +253,9 @@ class _Ellipsoidal(Quadric):
 
     def point(self, u1: Any, u2: Any) -> np.ndarray:
         """``(a cos u1 cos u2, b cos u1 sin u2, c sin u1)``: ``u1`` latitude, ``u2`` longitude."""
-        u1, u2 = np.broadcast_arrays(np.asarray(u1, float), np.asarray(u2, float))
+        u1, u2 = np.asarray(u1, float), np.asarray(u2, float)
+        if u1.shape != u2.shape:  # (the renderer's parameters come in equal shapes)
+            u1, u2 = np.broadcast_arrays(u1, u2)
         a, b, c = self.axes.tolist()
         out = np.empty(u1.shape + (3,))
         c1 = np.cos(u1)
