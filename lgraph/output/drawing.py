@@ -90,36 +90,6 @@ class Stroke:
         return len(self.xy)
 
 
-def made_stroke(
-    xy: np.ndarray,
-    xyz: np.ndarray,
-    uv: np.ndarray | None,
-    visible: bool,
-    family: str,
-    surface: Any,
-    style: Style,
-    occlusion: int,
-    curve: Any,
-) -> Stroke:
-    """``Stroke(xy, xyz, uv, visible, family, surface, style, occlusion,
-    curve=curve)`` for arguments its converters leave as they are (float
-    arrays, ``uv`` a float array or None), without calling them: the renderer
-    makes one a stroke, thousands for a large scene."""
-    s = object.__new__(Stroke)
-    _set = object.__setattr__
-    _set(s, "xy", xy)
-    _set(s, "xyz", xyz)
-    _set(s, "uv", uv)
-    _set(s, "visible", visible)
-    _set(s, "family", family)
-    _set(s, "surface", surface)
-    _set(s, "style", style)
-    _set(s, "occlusion", occlusion)
-    _set(s, "halo", None)
-    _set(s, "curve", curve)
-    return s
-
-
 @attrs.frozen(eq=False)
 class PlacedLabel:
     """A label as placed by the renderer (``drawing.labels``).

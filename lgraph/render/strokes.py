@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..output.bezier import made_curve_ref, unwrapped
-from ..output.drawing import Stroke, made_stroke
+from ..output.drawing import Stroke
 from ..scene.style import Style
 from .sampling import Samples
 
@@ -145,6 +145,36 @@ def run_strokes(
             )
         )
     return out
+
+
+def made_stroke(
+    xy: np.ndarray,
+    xyz: np.ndarray,
+    uv: np.ndarray | None,
+    visible: bool,
+    family: str,
+    surface: Any,
+    style: Style,
+    occlusion: int,
+    curve: Any,
+) -> Stroke:
+    """``Stroke(xy, xyz, uv, visible, family, surface, style, occlusion,
+    curve=curve)`` for arguments its converters leave as they are (float
+    arrays, ``uv`` a float array or None), without calling them: the renderer
+    makes one a stroke, thousands for a large scene."""
+    s = object.__new__(Stroke)
+    _set = object.__setattr__
+    _set(s, "xy", xy)
+    _set(s, "xyz", xyz)
+    _set(s, "uv", uv)
+    _set(s, "visible", visible)
+    _set(s, "family", family)
+    _set(s, "surface", surface)
+    _set(s, "style", style)
+    _set(s, "occlusion", occlusion)
+    _set(s, "halo", None)
+    _set(s, "curve", curve)
+    return s
 
 
 def _own_surface(surface: Any, node: RenderNode) -> Any:
