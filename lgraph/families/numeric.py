@@ -119,12 +119,12 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
     return np.array(keep).reshape(-1, 2)
 
 
-def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, np.ndarray]:
-    """Points about ``step`` apart along lines ``ks`` and the line of each
-    (all lines evaluated in one call)."""
+def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, ...]:
+    """Points about ``step`` apart along lines ``ks``, the line of each and
+    its arc length (all lines evaluated in one call)."""
     ks = np.asarray(ks, int)
     if not len(ks):
-        return np.empty((0, 3)), np.empty(0, int)
+        return np.empty((0, 3)), np.empty(0, int), np.empty(0)
     a, b = -lines.ends[1, ks], lines.ends[0, ks]
     counts = np.maximum(np.ceil((b - a) / step).astype(int) + 1, 2)
     ids = np.repeat(ks, counts)
@@ -132,7 +132,7 @@ def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, np.ndar
     frac = (np.arange(len(ids)) - first) / np.repeat(counts - 1, counts)
     t = np.repeat(a, counts) + frac * np.repeat(b - a, counts)
     uv = lines.domain.wrap(lines.uv(ids, t), clip=False)
-    return lines.surface.point(uv[:, 0], uv[:, 1]), ids
+    return lines.surface.point(uv[:, 0], uv[:, 1]), ids, t
 
 
 def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tuple) -> list[int]:
@@ -151,44 +151,56 @@ def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tup
     cand = [int(k) for k in cand if lines.ends[0, k] + lines.ends[1, k] > 0]
     if not cand:
         return []
-    p, ids = _dense(lines, cand, coarse)
-    # squared distance of every grid point to every candidate (chunks of ~4M)
+    p, ids, t_of = _dense(lines, cand, coarse)
+    # squared distance of every grid point to every candidate: the least
+    # |p|^2 - 2 p.g over each candidate's points, plus |g|^2 (chunks of ~256k)
     bounds = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
     sq = np.empty((len(cand), len(GP)))
     g2 = np.einsum("ij,ij->i", GP, GP)
     p2 = np.einsum("ij,ij->i", p, p)
-    per_chunk = max(1, int(4e6 // max(len(GP) * len(p) / len(cand), 1)))
+    m2G = np.ascontiguousarray(-2.0 * GP.T)
+    per_chunk = max(1, int(2.5e5 // max(len(GP) * len(p) / len(cand), 1)))
     for c0 in range(0, len(cand), per_chunk):
         c1 = min(c0 + per_chunk, len(cand))
         lo_, hi_ = bounds[c0], (bounds[c1] if c1 < len(cand) else len(p))
-        d2 = g2[None, :] + p2[lo_:hi_, None] - 2 * (p[lo_:hi_] @ GP.T)
+        d2 = np.einsum("ij,jk->ik", p[lo_:hi_], m2G)  # not BLAS: its threads wake slowly
+        d2 += p2[lo_:hi_, None]
         sq[c0:c1] = np.minimum.reduceat(d2, bounds[c0:c1] - lo_, axis=0)
+    sq += g2
     sq = np.maximum(sq, 0.0)
     seed3 = surface.points(surface.domain.wrap(lines.uv(cand, np.zeros(len(cand))), clip=False))
     # which candidate seeds lie on which other candidate line (it would be
-    # drawn twice): segments of the fine polylines next to each seed
+    # drawn twice): a seed on a line lies within half a coarse step of one of
+    # its samples; there the line is sampled finely over a coarse step either
+    # side and the seed's distance to those segments measured
     from scipy.spatial import cKDTree
 
     tol = FIELD_DUPLICATE_RTOL * size
     fine = 2e-3 * size
-    q, qid = _dense(lines, cand, fine)
-    row_of = {k: r for r, k in enumerate(cand)}
+    row_of = np.full(lines.m, -1)
+    row_of[cand] = np.arange(len(cand))
+    pairs = cKDTree(seed3).sparse_distance_matrix(
+        cKDTree(p), 0.5 * coarse + tol, output_type="ndarray"
+    )
+    j, near = pairs["i"].astype(int), pairs["j"].astype(int)
+    other = ids[near] != np.asarray(cand)[j]
+    j, near = j[other], near[other]
+    k = ids[near]
+    offsets = np.linspace(-coarse, coarse, int(np.ceil(2 * coarse / fine)) + 1)
+    t = np.clip(
+        t_of[near][:, None] + offsets, -lines.ends[1, k][:, None], lines.ends[0, k][:, None]
+    )
+    uv = lines.domain.wrap(lines.uv(np.repeat(k, len(offsets)), t.ravel()), clip=False)
+    q = surface.point(uv[:, 0], uv[:, 1]).reshape(len(k), len(offsets), 3)
+    qa, ab = q[:, :-1], np.diff(q, axis=1)
+    rel = seed3[j][:, None] - qa
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tt = np.einsum("ijk,ijk->ij", rel, ab) / np.einsum("ijk,ijk->ij", ab, ab)
+    tt = np.fmin(np.fmax(tt, 0.0), 1.0)[..., None]  # NaN (a point twice) -> 0
+    dist = np.sqrt((((rel - tt * ab) ** 2).sum(axis=2)).min(axis=1))
     on_line = np.zeros((len(cand), len(cand)), bool)
-    for j, near in enumerate(cKDTree(q).query_ball_point(seed3, r=fine + tol)):
-        near = np.asarray(near, int)
-        near = near[qid[near] != cand[j]]
-        if not len(near):
-            continue
-        a = np.concatenate([near, near])
-        b = np.concatenate([np.maximum(near - 1, 0), np.minimum(near + 1, len(q) - 1)])
-        a, b = a[qid[a] == qid[b]], b[qid[a] == qid[b]]
-        ab = q[b] - q[a]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            tt = np.clip(np.einsum("ij,ij->i", seed3[j] - q[a], ab)
-                         / np.einsum("ij,ij->i", ab, ab), 0, 1)  # fmt: skip
-        dist = np.linalg.norm(q[a] + np.nan_to_num(tt)[:, None] * ab - seed3[j], axis=1)
-        for k in np.unique(qid[a][dist <= tol]):
-            on_line[j, row_of[int(k)]] = True
+    hit = dist <= tol
+    on_line[j[hit], row_of[k[hit]]] = True
     best = np.full(len(GP), np.inf)
     usable = np.ones(len(cand), bool)
     picked: list[int] = []
