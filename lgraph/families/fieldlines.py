@@ -126,16 +126,17 @@ def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.
         t = c[:, None]
         p = ((C3 * t + C2) * t + C1) * t + C0
         dp = (D3 * t + D2) * t + C1
-        up = p - hi_
-        excess = np.maximum(up, lo_ - p)  # > 0 outside
-        j = excess[:, 1] > excess[:, 0]  # the larger (the first on ties)
+        up, down = p - hi_, lo_ - p
+        excess = np.maximum(up, down)  # > 0 outside
+        # its slope: the upper side's where that is the nearer (inside too)
+        slope = np.where(up >= down, dp, -dp)
+        j = excess[:, 1] > excess[:, 0]  # the larger coordinate (the first on ties)
         f = np.where(j, excess[:, 1], excess[:, 0])
-        df = np.where(j, dp[:, 1], dp[:, 0])
-        df = np.where(np.where(j, up[:, 1], up[:, 0]) > 0, df, -df)
+        df = np.where(j, slope[:, 1], slope[:, 0])
         outside = f > 0
         a, b = np.where(outside, a, c), np.where(outside, c, b)
-        c = c - f / df
-        c = np.where((c > a) & (c < b), c, 0.5 * (a + b))
+        c = c - f / df  # (stays on a root found: f = 0 moves a there)
+        c = np.where((c >= a) & (c <= b), c, 0.5 * (a + b))
     return c
 
 
@@ -326,11 +327,13 @@ def trace(
     length: float | None = None,
     stop: float | None = None,
     rtol: float | None = None,
+    max_step: float = FIELD_MAX_STEP,
     singular: Any = (),
 ) -> FieldLines:
     """Trace the lines of ``field`` through ``seeds`` ``(m, 2)``, each starting
     along the branch nearest to ``directions[k]`` (parameter directions),
-    forward and backward, all at once.  Lines end where they pass within
+    forward and backward, all at once (steps at most ``max_step`` sizes).
+    Lines end where they pass within
     ``FIELD_SINGULAR_RTOL`` of a point of ``singular``
     (parameters of umbilics).  See the module docstring.
     """
@@ -399,7 +402,7 @@ def trace(
     R = 2 * m
     S = np.zeros(R)
     H = np.full(R, FIELD_FIRST_STEP * size)
-    hmin, hmax = FIELD_MIN_STEP * size, FIELD_MAX_STEP * size
+    hmin, hmax = FIELD_MIN_STEP * size, max_step * size
     closed = np.zeros(R, bool)
     left = np.zeros(R, bool)  # has been far from its seed (closing test)
     zero = np.zeros((R, 2))

@@ -32,7 +32,7 @@ from ..curvature import _frame, asymptotic_field, principal_field
 from ..curves import CurveBatch
 from . import SPACINGS, parameter_line_batches
 from ._seeds import _center_seed, _crossing, _grid, _spread, _stable, cell_centres
-from .fieldlines import FieldLines, trace
+from .fieldlines import FieldLines, _forms_of, trace
 
 __all__ = ["field_line_batches", "numeric_lines_of_curvature", "umbilics"]
 
@@ -57,7 +57,7 @@ def _parameter_lines_are_field_lines(surface: Any, field: Any) -> bool:
 def _umbilic_residual(surface: Any, uv: np.ndarray, kappa: float) -> np.ndarray:
     """``(A, B, C)`` of equation (3.3) (``A du1^2 + B du1 du2 + C du2^2 = 0``),
     scaled: all three vanish exactly at umbilics (flat ones included)."""
-    _x1, _x2, (g11, g12, g22), (L11, L12, L22) = _frame(surface, uv)
+    g11, g12, g22, L11, L12, L22 = _forms_of(surface)(uv)
     scale = (g11 * g22 * kappa)[:, None]
     return np.stack([L11 * g12 - L12 * g11, L11 * g22 - L22 * g11, L12 * g22 - L22 * g12],
                     axis=1) / scale  # fmt: skip
@@ -107,7 +107,10 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
             adj_b = np.stack([M[:, 1, 1] * b[:, 0] - M[:, 0, 1] * b[:, 1],
                               M[:, 0, 0] * b[:, 1] - M[:, 1, 0] * b[:, 0]], axis=1)  # fmt: skip
             step = adj_b / det[:, None]
-        u = u + np.clip(np.nan_to_num(step), -0.1 * span, 0.1 * span)
+        step = np.clip(np.nan_to_num(step), -0.1 * span, 0.1 * span)
+        u = u + step
+        if not np.abs(step / span).max(initial=0.0) > 1e-14:  # every iterate has converged
+            break
     u = d.wrap(d.clip(u), clip=False)
     f = np.linalg.norm(_umbilic_residual(surface, u, kappa), axis=1)
     inside = np.all((u >= lo) & (u <= lo + span), axis=1)
@@ -252,8 +255,11 @@ def field_line_batches(
     singular = umbilics(surface) if field is principal_field else np.empty((0, 2))
     c = _center_seed(surface, field, stop)
     D, _, G = field(surface, np.array([c]))
-    # the lines through the centre place seeds only: a loose tolerance will do
-    both = trace(surface, field, [c, c], D[0], stop=stop, rtol=1e-6, singular=singular)
+    # the lines through the centre place seeds only: a loose tolerance and
+    # long steps will do (each seed's line is traced exactly)
+    both = trace(
+        surface, field, [c, c], D[0], stop=stop, rtol=1e-4, max_step=0.2, singular=singular
+    )
     # the branch running like the u1 = const lines (along x2) at the centre
     x1, x2 = surface.derivatives(c[0], c[1])
     e = D[0, :, :1] * x1 + D[0, :, 1:] * x2
