@@ -108,24 +108,41 @@ _GRID17 = np.linspace(0.0, 1.0, 17)
 _GRID33 = np.linspace(0.0, 1.0, 33)
 
 
+def _quartic(y0: np.ndarray, k0: np.ndarray, y1: np.ndarray, k1: np.ndarray,
+             h: np.ndarray, r5: np.ndarray) -> np.ndarray:  # fmt: skip
+    """Coefficients ``(n, 5, 2)`` (constant first) of the continuous extension
+    of steps (:func:`_dense_at`) as polynomials in the step fraction."""
+    a = y1 - y0
+    hk0 = h[:, None] * k0
+    b = hk0 - a
+    r4 = a - h[:, None] * k1 - b
+    return np.stack([y0, hk0, r4 + r5 - b, -(r4 + 2 * r5), r5], axis=1)
+
+
 def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.ndarray:
-    """The fraction where each cubic (which starts inside the box ``lo..hi``
-    and ends outside it) first leaves it: the first of 16 parts that ends
-    outside, then safeguarded Newton steps on the excess over the box (the
-    larger of the two coordinates'; callers silence floating-point warnings)."""
+    """The fraction where each polynomial (coefficients ``(n, d + 1, 2)``,
+    constant first; it starts inside the box ``lo..hi`` and ends outside it)
+    first leaves the box: the first of 16 parts that ends outside, then
+    safeguarded Newton steps on the excess over the box (the larger of the
+    two coordinates'; callers silence floating-point warnings)."""
     grid = _GRID17
     t = grid[None, :, None]
-    C0, C1, C2, C3 = C[:, 0], C[:, 1], C[:, 2], C[:, 3]
-    p = ((C3[:, None] * t + C2[:, None]) * t + C1[:, None]) * t + C0[:, None]
+    deg = C.shape[1] - 1
+    p = C[:, None, deg]
+    for i in range(deg - 1, -1, -1):
+        p = p * t + C[:, None, i]
     lo_, hi_ = np.where(per, -np.inf, lo), np.where(per, np.inf, hi)
     first = np.argmax(((p < lo_) | (p > hi_)).any(axis=2), axis=1)
     a, b = grid[first - 1], grid[first]
-    D2, D3 = 2 * C2, 3 * C3
+    D = [i * C[:, i] for i in range(1, deg + 1)]  # the derivative's coefficients
     c = 0.5 * (a + b)
     for _ in range(6):
         t = c[:, None]
-        p = ((C3 * t + C2) * t + C1) * t + C0
-        dp = (D3 * t + D2) * t + C1
+        p, dp = C[:, deg], D[-1]
+        for i in range(deg - 1, -1, -1):
+            p = p * t + C[:, i]
+            if i:
+                dp = dp * t + D[i - 1]
         up, down = p - hi_, lo_ - p
         excess = np.maximum(up, down)  # > 0 outside
         # its slope: the upper side's where that is the nearer (inside too)
@@ -385,6 +402,12 @@ def trace(
         lean = _principal_oriented(surface, stop)
         if any(d.glued):
             oriented = lambda uv, ref: lean(d.wrap(uv, clip=True), ref)  # noqa: E731
+        elif getattr(surface, "defined_past_domain", False):
+            # closed forms that hold past the edges (the monkey saddle's):
+            # trial stages there see the field itself, so steps that end
+            # just past an edge keep their accuracy (lines grazing an edge
+            # would crawl along it)
+            oriented = lean
         else:  # trial stages past an edge see the field of the nearest edge point
             oriented = lambda uv, ref: lean(np.minimum(np.maximum(uv, lo), hi), ref)  # noqa: E731
 
@@ -452,7 +475,8 @@ def trace(
             # leaving the patch across a non-periodic side: end exactly on it
             out = np.flatnonzero((((y1 < lo) | (y1 > hi)) & ~per).any(axis=1))
             if len(out):
-                th = _exit(_cubic(*(a[out] for a in step)), lo, hi, per)
+                # where the method's own continuous extension leaves the patch
+                th = _exit(_quartic(*(a[out] for a in step), r5[out]), lo, hi, per)
                 last = (th >= 1 - _END_RTOL) | (th * hg[out] <= 10 * hmin)
                 box = (np.where(per, -np.inf, lo), np.where(per, np.inf, hi))
                 _finish(ends, out[last], th[last], np.clip(y1[out[last]], *box))

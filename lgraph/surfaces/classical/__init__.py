@@ -91,6 +91,10 @@ class MonkeySaddle(Surface):
         L11 = w * u1
         return g11, g12, g22, L11, -w * u2, -L11
 
+    #: its formulas hold past the square: numeric lines of curvature may
+    #: evaluate the fundamental forms there (``lgraph.families.fieldlines``)
+    defined_past_domain = True
+
     # the cubic ray test costs about as much as the torus's quartic one
     hit_cost = 10.0
     hit_call_cost = 500.0
