@@ -126,23 +126,18 @@ def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.
     safeguarded Newton steps on the excess over the box (the larger of the
     two coordinates'; callers silence floating-point warnings)."""
     grid = _GRID17
-    t = grid[None, :, None]
     deg = C.shape[1] - 1
-    p = C[:, None, deg]
-    for i in range(deg - 1, -1, -1):
-        p = p * t + C[:, None, i]
+    powers = np.arange(deg + 1)
+    p = np.einsum("ti,nik->ntk", grid[:, None] ** powers, C)
     lo_, hi_ = np.where(per, -np.inf, lo), np.where(per, np.inf, hi)
     first = np.argmax(((p < lo_) | (p > hi_)).any(axis=2), axis=1)
     a, b = grid[first - 1], grid[first]
-    D = [i * C[:, i] for i in range(1, deg + 1)]  # the derivative's coefficients
+    D = C[:, 1:] * powers[1:, None]  # the derivative's coefficients
     c = 0.5 * (a + b)
     for _ in range(6):
-        t = c[:, None]
-        p, dp = C[:, deg], D[-1]
-        for i in range(deg - 1, -1, -1):
-            p = p * t + C[:, i]
-            if i:
-                dp = dp * t + D[i - 1]
+        T = c[:, None] ** powers
+        p = np.einsum("ni,nik->nk", T, C)
+        dp = np.einsum("ni,nik->nk", T[:, :-1], D)
         up, down = p - hi_, lo_ - p
         excess = np.maximum(up, down)  # > 0 outside
         # its slope: the upper side's where that is the nearer (inside too)
@@ -152,8 +147,12 @@ def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.
         df = np.where(j, slope[:, 1], slope[:, 0])
         outside = f > 0
         a, b = np.where(outside, a, c), np.where(outside, c, b)
-        c = c - f / df  # (stays on a root found: f = 0 moves a there)
-        c = np.where((c >= a) & (c <= b), c, 0.5 * (a + b))
+        new = c - f / df  # (stays on a root found: f = 0 moves a there)
+        new = np.where((new >= a) & (new <= b), new, 0.5 * (a + b))
+        if np.abs(new - c).max() <= 1e-14:  # converged (to far below _END_RTOL)
+            c = new
+            break
+        c = new
     return c
 
 
@@ -206,7 +205,8 @@ def _principal_oriented(surface: Any, stop: float) -> Any:
             H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
             K = (L11 * L22 - L12 * L12) / g
             root = np.sqrt(np.maximum(H * H - K, 0.0))
-            strength = 2 * root / (np.abs(H - root) + np.abs(H + root))
+            # strength = 2 root / (|H - root| + |H + root|) = root / max(|H|, root) > stop
+            strong = root > stop * np.abs(H)
             k = H + sign * root  # (2, n): k1 <= k2
             # the kernel of L - k G from its longer row (lgraph.curvature._direction_for)
             a11, a12, a22 = L11 - k * g11, L12 - k * g12, L22 - k * g22
@@ -222,7 +222,7 @@ def _principal_oriented(surface: Any, stop: float) -> Any:
             out = np.empty_like(uv)
             out[:, 0] = np.where(b, d0[1], d0[0]) * scale
             out[:, 1] = np.where(b, d1[1], d1[0]) * scale
-            ok = np.isfinite(out).all(axis=1) & (strength > stop) & (np.abs(cb) > 0.5)
+            ok = np.isfinite(out).all(axis=1) & strong & (np.abs(cb) > 0.5)
         out[~ok] = 0.0
         return out, ok
 

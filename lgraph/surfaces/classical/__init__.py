@@ -82,7 +82,8 @@ class MonkeySaddle(Surface):
         >>> bool(np.allclose(s.fundamental_forms(0.3, -0.2), fundamental_forms(s, 0.3, -0.2)))
         True
         """
-        u1, u2 = _uv(u1, u2)
+        if not (type(u1) is type(u2) is np.ndarray and u1.shape == u2.shape):
+            u1, u2 = _uv(u1, u2)  # (the tracer's rows need no broadcasting)
         c = self.c
         f1, f2 = 3 * c * (u1 * u1 - u2 * u2), -6 * c * u1 * u2
         g12 = f1 * f2
