@@ -130,10 +130,14 @@ def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.
     powers = np.arange(deg + 1)
     p = np.einsum("ti,nik->ntk", grid[:, None] ** powers, C)
     lo_, hi_ = np.where(per, -np.inf, lo), np.where(per, np.inf, hi)
-    first = np.argmax(((p < lo_) | (p > hi_)).any(axis=2), axis=1)
+    excess = np.maximum(p - hi_, lo_ - p).max(axis=2)  # > 0 outside
+    first = np.argmax(excess > 0, axis=1)
     a, b = grid[first - 1], grid[first]
     D = C[:, 1:] * powers[1:, None]  # the derivative's coefficients
-    c = 0.5 * (a + b)
+    # start where the excess interpolated linearly over the part vanishes
+    rows = np.arange(len(C))
+    fa, fb = excess[rows, first - 1], excess[rows, first]
+    c = a + (b - a) * np.fmin(np.fmax(fa / (fa - fb), 0.0), 1.0)
     for _ in range(6):
         T = c[:, None] ** powers
         p = np.einsum("ni,nik->nk", T, C)
