@@ -108,8 +108,9 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
                               M[:, 0, 0] * b[:, 1] - M[:, 1, 0] * b[:, 0]], axis=1)  # fmt: skip
             step = adj_b / det[:, None]
         step = np.clip(np.nan_to_num(step), -0.1 * span, 0.1 * span)
+        moved = d.clip(u + step) - u  # (iterates pushed past an edge stay on it)
         u = u + step
-        if not np.abs(step / span).max(initial=0.0) > 1e-14:  # every iterate has converged
+        if not np.abs(moved / span).max(initial=0.0) > 1e-14:  # every iterate has settled
             break
     u = d.wrap(d.clip(u), clip=False)
     f = np.linalg.norm(_umbilic_residual(surface, u, kappa), axis=1)
