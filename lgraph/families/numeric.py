@@ -157,13 +157,14 @@ def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tup
         return []
     p, ids, t_of = _dense(lines, cand, coarse)
     # squared distance of every grid point to every candidate: the least
-    # |p|^2 - 2 p.g over each candidate's points, plus |g|^2 (chunks of ~256k)
+    # |p|^2 - 2 p.g over each candidate's points, plus |g|^2 (chunks of ~50k,
+    # which stay in the cache)
     bounds = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
     sq = np.empty((len(cand), len(GP)))
     g2 = np.einsum("ij,ij->i", GP, GP)
     p2 = np.einsum("ij,ij->i", p, p)
     m2G = np.ascontiguousarray(-2.0 * GP.T)
-    per_chunk = max(1, int(2.5e5 // max(len(GP) * len(p) / len(cand), 1)))
+    per_chunk = max(1, int(5e4 // max(len(GP) * len(p) / len(cand), 1)))
     for c0 in range(0, len(cand), per_chunk):
         c1 = min(c0 + per_chunk, len(cand))
         lo_, hi_ = bounds[c0], (bounds[c1] if c1 < len(cand) else len(p))
