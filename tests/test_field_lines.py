@@ -190,7 +190,7 @@ def test_saddle_closed_forms_and_the_lean_principal_field():
     here, and the tracer's lean principal field (with them, and from the
     derivatives of another surface) takes the branch ``principal_field``
     gives, with the same sign, to rounding."""
-    from lgraph.families.fieldlines import _principal_oriented
+    from lgraph.families.numeric import principal_oriented
 
     rng = np.random.default_rng(3)
     uv = rng.uniform(-1, 1, (500, 2))
@@ -207,7 +207,7 @@ def test_saddle_closed_forms_and_the_lean_principal_field():
         b = (np.abs(c[:, 1]) > np.abs(c[:, 0])).astype(int)
         cb = c[np.arange(500), b]
         want = D[np.arange(500), b] * np.sign(cb)[:, None]
-        out, ok = _principal_oriented(S, 2e-3)(uv, ref)
+        out, ok = principal_oriented(S, 2e-3)(uv, ref)
         assert np.array_equal(ok, (strength > 2e-3) & (np.abs(cb) > 0.5))
         assert np.allclose(out[ok], want[ok], rtol=0, atol=1e-12)
         assert not out[~ok].any()

@@ -46,7 +46,6 @@ from .._tolerance import (
     FIELD_SINGULAR_RTOL,
     UMBILIC_STOP,
 )
-from ..curvature import _frame, principal_field
 from ..curves import CurveBatch
 
 __all__ = ["FieldLines", "trace"]
@@ -179,60 +178,6 @@ def _rel(p: np.ndarray, seed: np.ndarray, span: np.ndarray, per: Any) -> np.ndar
     return (p - per.nearest_image(p, seed)) / span
 
 
-def _forms_of(surface: Any) -> Any:
-    """``forms(uv) -> (g11, g12, g22, L11, L12, L22)`` at rows of ``uv``: the
-    surface's own ``fundamental_forms(u1, u2)`` where it has one (closed
-    forms, such as the monkey saddle's), else from its derivatives."""
-    own = getattr(surface, "fundamental_forms", None)
-    if own is not None:
-        return lambda uv: own(uv[:, 0], uv[:, 1])
-
-    def forms(uv: np.ndarray) -> tuple[np.ndarray, ...]:
-        _x1, _x2, g, L = _frame(surface, uv)
-        return g + L
-
-    return forms
-
-
-def _principal_oriented(surface: Any, stop: float) -> Any:
-    """``oriented(uv, ref)`` of :func:`trace` for the principal field
-    (:func:`lgraph.curvature.principal_field`, the same formulas) in few array
-    operations: both branches at once as ``(2, n)`` arrays, each normalized
-    only after the branch nearest ``ref`` is chosen."""
-    forms = _forms_of(surface)
-    sign = np.array([[-1.0], [1.0]])
-
-    def oriented(uv: np.ndarray, ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        g11, g12, g22, L11, L12, L22 = forms(uv)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            g = g11 * g22 - g12 * g12
-            H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
-            K = (L11 * L22 - L12 * L12) / g
-            root = np.sqrt(np.maximum(H * H - K, 0.0))
-            # strength = 2 root / (|H - root| + |H + root|) = root / max(|H|, root) > stop
-            strong = root > stop * np.abs(H)
-            k = H + sign * root  # (2, n): k1 <= k2
-            # the kernel of L - k G from its longer row (lgraph.curvature._direction_for)
-            a11, a12, a22 = L11 - k * g11, L12 - k * g12, L22 - k * g22
-            first = np.abs(a11) >= np.abs(a22)
-            d0 = np.where(first, a12, a22)
-            d1 = np.where(first, -a11, -a12)
-            norm = np.sqrt(g11 * d0 * d0 + 2 * g12 * d0 * d1 + g22 * d1 * d1)
-            r0, r1 = ref[:, 0], ref[:, 1]
-            c = (d0 * (g11 * r0 + g12 * r1) + d1 * (g12 * r0 + g22 * r1)) / norm
-            b = np.abs(c[1]) > np.abs(c[0])
-            cb = np.where(b, c[1], c[0])
-            scale = np.where(cb < 0, -1.0, 1.0) / np.where(b, norm[1], norm[0])
-            out = np.empty_like(uv)
-            out[:, 0] = np.where(b, d0[1], d0[0]) * scale
-            out[:, 1] = np.where(b, d1[1], d1[0]) * scale
-            ok = np.isfinite(out).all(axis=1) & strong & (np.abs(cb) > 0.5)
-        out[~ok] = 0.0
-        return out, ok
-
-    return oriented
-
-
 def _closest(C: np.ndarray, h: np.ndarray, seed: np.ndarray, span: np.ndarray,
              per: Any) -> tuple[np.ndarray, ...]:  # fmt: skip
     """The fraction (0..1) where each cubic passes closest to its
@@ -350,6 +295,7 @@ def trace(
     rtol: float | None = None,
     max_step: float = FIELD_MAX_STEP,
     singular: Any = (),
+    lean: Any = None,
 ) -> FieldLines:
     """Trace the lines of ``field`` through ``seeds`` ``(m, 2)``, each starting
     along the branch nearest to ``directions[k]`` (parameter directions),
@@ -357,6 +303,10 @@ def trace(
     Lines end where they pass within
     ``FIELD_SINGULAR_RTOL`` of a point of ``singular``
     (parameters of umbilics).  See the module docstring.
+
+    ``lean(surface, stop)``, where given, makes the ``oriented(uv, ref)`` the
+    steps use on domains without a twist: the field's branch nearest ``ref``
+    in few array operations (:func:`lgraph.families.numeric.principal_oriented`).
     """
     seeds = np.asarray(seeds, float).reshape(-1, 2)
     m = len(seeds)
@@ -402,18 +352,18 @@ def trace(
             ok = np.isfinite(out).all(axis=1) & (strength > stop) & (np.abs(cb) > 0.5)
         return np.where(ok[:, None], out, 0.0), ok
 
-    if field is principal_field and not twisted:
-        lean = _principal_oriented(surface, stop)
+    if lean is not None and not twisted:
+        fast = lean(surface, stop)
         if any(d.glued):
-            oriented = lambda uv, ref: lean(d.wrap(uv, clip=True), ref)  # noqa: E731
+            oriented = lambda uv, ref: fast(d.wrap(uv, clip=True), ref)  # noqa: E731
         elif getattr(surface, "defined_past_domain", False):
             # closed forms that hold past the edges (the monkey saddle's):
             # trial stages there see the field itself, so steps that end
             # just past an edge keep their accuracy (lines grazing an edge
             # would crawl along it)
-            oriented = lean
+            oriented = fast
         else:  # trial stages past an edge see the field of the nearest edge point
-            oriented = lambda uv, ref: lean(np.minimum(np.maximum(uv, lo), hi), ref)  # noqa: E731
+            oriented = lambda uv, ref: fast(np.minimum(np.maximum(uv, lo), hi), ref)  # noqa: E731
 
     # rays 0..m-1 run forward, m..2m-1 backward from the same seeds
     Y = np.concatenate([seeds, seeds])

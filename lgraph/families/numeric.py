@@ -32,9 +32,69 @@ from ..curvature import _frame, asymptotic_field, principal_field
 from ..curves import CurveBatch
 from . import SPACINGS, parameter_line_batches
 from ._seeds import _center_seed, _crossing, _grid, _spread, _stable, cell_centres
-from .fieldlines import FieldLines, _forms_of, trace
+from .fieldlines import FieldLines, trace
 
 __all__ = ["field_line_batches", "numeric_lines_of_curvature", "umbilics"]
+
+
+def forms_of(surface: Any) -> Any:
+    """``forms(uv) -> (g11, g12, g22, L11, L12, L22)`` at rows of ``uv``: the
+    surface's own ``fundamental_forms(u1, u2)`` where it has one (closed
+    forms, such as the monkey saddle's), else from its derivatives."""
+    own = getattr(surface, "fundamental_forms", None)
+    if own is not None:
+        return lambda uv: own(uv[:, 0], uv[:, 1])
+
+    def forms(uv: np.ndarray) -> tuple[np.ndarray, ...]:
+        _x1, _x2, g, L = _frame(surface, uv)
+        return g + L
+
+    return forms
+
+
+def principal_oriented(surface: Any, stop: float) -> Any:
+    """``oriented(uv, ref)`` of :func:`~lgraph.families.fieldlines.trace` for the principal field
+    (:func:`lgraph.curvature.principal_field`, the same formulas) in few array
+    operations: both branches at once as ``(2, n)`` arrays, each normalized
+    only after the branch nearest ``ref`` is chosen."""
+    forms = forms_of(surface)
+    sign = np.array([[-1.0], [1.0]])
+
+    def oriented(uv: np.ndarray, ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        g11, g12, g22, L11, L12, L22 = forms(uv)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            g = g11 * g22 - g12 * g12
+            H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
+            K = (L11 * L22 - L12 * L12) / g
+            root = np.sqrt(np.maximum(H * H - K, 0.0))
+            # strength = 2 root / (|H - root| + |H + root|) = root / max(|H|, root) > stop
+            strong = root > stop * np.abs(H)
+            k = H + sign * root  # (2, n): k1 <= k2
+            # the kernel of L - k G from its longer row (lgraph.curvature._direction_for)
+            a11, a12, a22 = L11 - k * g11, L12 - k * g12, L22 - k * g22
+            first = np.abs(a11) >= np.abs(a22)
+            d0 = np.where(first, a12, a22)
+            d1 = np.where(first, -a11, -a12)
+            norm = np.sqrt(g11 * d0 * d0 + 2 * g12 * d0 * d1 + g22 * d1 * d1)
+            r0, r1 = ref[:, 0], ref[:, 1]
+            c = (d0 * (g11 * r0 + g12 * r1) + d1 * (g12 * r0 + g22 * r1)) / norm
+            b = np.abs(c[1]) > np.abs(c[0])
+            cb = np.where(b, c[1], c[0])
+            scale = np.where(cb < 0, -1.0, 1.0) / np.where(b, norm[1], norm[0])
+            out = np.empty_like(uv)
+            out[:, 0] = np.where(b, d0[1], d0[0]) * scale
+            out[:, 1] = np.where(b, d1[1], d1[0]) * scale
+            ok = np.isfinite(out).all(axis=1) & strong & (np.abs(cb) > 0.5)
+        out[~ok] = 0.0
+        return out, ok
+
+    return oriented
+
+
+def lean_oriented(field: Any) -> Any:
+    """The ``lean`` factory of :func:`~lgraph.families.fieldlines.trace` for
+    ``field`` (``None`` where there is none)."""
+    return principal_oriented if field is principal_field else None
 
 
 def _parameter_lines_are_field_lines(surface: Any, field: Any) -> bool:
@@ -57,7 +117,7 @@ def _parameter_lines_are_field_lines(surface: Any, field: Any) -> bool:
 def _umbilic_residual(surface: Any, uv: np.ndarray, kappa: float) -> np.ndarray:
     """``(A, B, C)`` of equation (3.3) (``A du1^2 + B du1 du2 + C du2^2 = 0``),
     scaled: all three vanish exactly at umbilics (flat ones included)."""
-    g11, g12, g22, L11, L12, L22 = _forms_of(surface)(uv)
+    g11, g12, g22, L11, L12, L22 = forms_of(surface)(uv)
     scale = (g11 * g22 * kappa)[:, None]
     return np.stack([L11 * g12 - L12 * g11, L11 * g22 - L22 * g11, L12 * g22 - L22 * g12],
                     axis=1) / scale  # fmt: skip
@@ -254,13 +314,22 @@ def field_line_batches(
     )  # fmt: skip
     check_field_lines(owner, n1, n2, spacing)
     stop = field.stop if stop is None else stop
+    lean = lean_oriented(field)
     singular = umbilics(surface) if field is principal_field else np.empty((0, 2))
     c = _center_seed(surface, field, stop)
     D, _, G = field(surface, np.array([c]))
     # the lines through the centre place seeds only: a loose tolerance and
     # long steps will do (each seed's line is traced exactly)
     both = trace(
-        surface, field, [c, c], D[0], stop=stop, rtol=1e-4, max_step=0.2, singular=singular
+        surface,
+        field,
+        [c, c],
+        D[0],
+        stop=stop,
+        rtol=1e-4,
+        max_step=0.2,
+        singular=singular,
+        lean=lean,
     )
     # the branch running like the u1 = const lines (along x2) at the centre
     x1, x2 = surface.derivatives(c[0], c[1])
@@ -269,7 +338,7 @@ def field_line_batches(
     if spacing == "even":
         from ._even import even_batches
 
-        return even_batches(surface, field, both, a, n1, n2, stop, family, singular)
+        return even_batches(surface, field, both, a, n1, n2, stop, family, singular, lean)
     grid = _grid(surface, field, stop)
     G, _, weight = grid
     # candidate seeds of both families, traced together: many along the
@@ -293,7 +362,13 @@ def field_line_batches(
         dirs.append(d_f[keep])
         fam.append(np.full(int(keep.sum()), n))
     lines = trace(
-        surface, field, np.concatenate(seeds), np.concatenate(dirs), stop=stop, singular=singular
+        surface,
+        field,
+        np.concatenate(seeds),
+        np.concatenate(dirs),
+        stop=stop,
+        singular=singular,
+        lean=lean,
     )
     out, start = [], 0
     for f in fam:
