@@ -306,7 +306,7 @@ def trace(
 
     ``lean(surface, stop)``, where given, makes the ``oriented(uv, ref)`` the
     steps use on domains without a twist: the field's branch nearest ``ref``
-    in few array operations (:func:`lgraph.families.numeric.principal_oriented`).
+    in few array operations (``lgraph.families.numeric.principal_oriented``).
     """
     seeds = np.asarray(seeds, float).reshape(-1, 2)
     m = len(seeds)
