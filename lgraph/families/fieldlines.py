@@ -395,18 +395,20 @@ def trace(
             h = np.minimum(H[act], length - S[act])
             hc = h[:, None]
             # the stages' slopes as rows of one array: their combinations are products
+            # (einsum, not BLAS: its threads spin and wake slowly on a loaded machine)
             ks = np.empty((7, 2 * len(act)))
             ks[0] = k1.ravel()
             ki, ok = k1, np.ones(len(act), bool)
             for j, a in enumerate(_A_ROWS, 1):
-                ki, oki = oriented(y + hc * (a @ ks[:j]).reshape(-1, 2), ki)
+                ki, oki = oriented(y + hc * np.einsum("s,sn->n", a, ks[:j]).reshape(-1, 2), ki)
                 ok &= oki
                 ks[j] = ki.ravel()
-            y5 = y + hc * (_B_ROW @ ks[:6]).reshape(-1, 2)
+            y5 = y + hc * np.einsum("s,sn->n", _B_ROW, ks[:6]).reshape(-1, 2)
             k7, ok7 = oriented(y5, ki)
             ok &= ok7
             ks[6] = k7.ravel()
-            err = (np.abs(hc * (_E_ROW @ ks).reshape(-1, 2)) / span).max(axis=1)
+            err = np.einsum("s,sn->n", _E_ROW, ks).reshape(-1, 2)
+            err = (np.abs(hc * err) / span).max(axis=1)
             good = ok & (err <= rtol)
             fac = np.minimum(np.maximum(0.9 * (rtol / np.maximum(err, 1e-300)) ** 0.2, 0.2), 5.0)
             newh = np.where(ok, h * np.where(good, fac, np.minimum(fac, 0.5)), 0.1 * h)
@@ -420,7 +422,7 @@ def trace(
             hg = h[g]
             step = (y[g], k1[g], y5[g], k7[g], hg)  # the steps' cubics are built where needed
             y1, k1n = y5[g].copy(), k7[g].copy()
-            r5 = hg[:, None] * (_D_ROW @ ks).reshape(-1, 2)[g]
+            r5 = hg[:, None] * np.einsum("s,sn->n", _D_ROW, ks).reshape(-1, 2)[g]
             stop_here = np.zeros(len(g), bool)
             redo = np.full(len(g), np.nan)  # retry with this step (ends on an edge or the seed)
 

@@ -270,7 +270,7 @@ def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tup
     usable = np.ones(len(cand), bool)
     picked: list[int] = []
     while len(picked) < n and usable.any():
-        energy = np.minimum(best, sq) @ weight
+        energy = np.einsum("ij,j->i", np.minimum(best, sq), weight)  # (not BLAS)
         energy = np.round(energy / max(float(energy[usable].max()), 1e-300), 9)
         row = int(np.flatnonzero(usable)[np.argmin(energy[usable])])
         picked.append(cand[row])
