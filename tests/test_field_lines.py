@@ -185,6 +185,34 @@ def _saddle_forms(x, y):
     return (1 + zx * zx, zx * zy, 1 + zy * zy), (zxx / w, zxy / w, zyy / w)
 
 
+def test_saddle_closed_forms_and_the_lean_principal_field():
+    """The saddle's closed-form fundamental forms are the ones written out
+    here, and the tracer's lean principal field (with them, and from the
+    derivatives of another surface) takes the branch ``principal_field``
+    gives, with the same sign, to rounding."""
+    from lgraph.families.numeric import principal_oriented
+
+    rng = np.random.default_rng(3)
+    uv = rng.uniform(-1, 1, (500, 2))
+    g, L = _saddle_forms(uv[:, 0], uv[:, 1])
+    assert np.allclose(SADDLE.fundamental_forms(uv[:, 0], uv[:, 1]), g + L, rtol=1e-14, atol=1e-15)
+    for S in (SADDLE, lg.Enneper()):
+        D, strength, G = principal_field(S, uv)
+        ref = rng.normal(size=(500, 2))  # unit in the metric, as the tracer passes it
+        ref /= np.sqrt(G[:, 0] * ref[:, 0] ** 2 + 2 * G[:, 1] * ref[:, 0] * ref[:, 1]
+                       + G[:, 2] * ref[:, 1] ** 2)[:, None]  # fmt: skip
+        Gr = np.stack([G[:, 0] * ref[:, 0] + G[:, 1] * ref[:, 1],
+                       G[:, 1] * ref[:, 0] + G[:, 2] * ref[:, 1]], axis=1)  # fmt: skip
+        c = np.einsum("ibj,ij->ib", D, Gr)
+        b = (np.abs(c[:, 1]) > np.abs(c[:, 0])).astype(int)
+        cb = c[np.arange(500), b]
+        want = D[np.arange(500), b] * np.sign(cb)[:, None]
+        out, ok = principal_oriented(S, 2e-3)(uv, ref)
+        assert np.array_equal(ok, (strength > 2e-3) & (np.abs(cb) > 0.5))
+        assert np.allclose(out[ok], want[ok], rtol=0, atol=1e-12)
+        assert not out[~ok].any()
+
+
 def _lines(batches, n=4001):
     for b in batches:
         for k in range(len(b)):
@@ -244,6 +272,7 @@ def test_results_do_not_hang_on_the_last_bits():
     class Twin(lg.Surface):
         domain = SADDLE.domain
         size = SADDLE.size
+        defined_past_domain = SADDLE.defined_past_domain  # the same formulas past the edges
 
         def _wobble(self, x):
             return x * (1 + 1e-14 * np.sin(1e3 * x))

@@ -106,6 +106,7 @@ def even_batches(
     stop: float,
     family: str,
     singular: np.ndarray,
+    lean: Any = None,
 ) -> list[CurveBatch]:
     """Evenly spaced lines: ``n1`` of branch ``a``, ``n2`` of the other.
 
@@ -135,7 +136,7 @@ def even_batches(
         else:
             seeds = both.uv_line(0, np.zeros(1))
             dirs = field(surface, seeds)[0][:, which]
-        lines = trace(surface, field, seeds, dirs, stop=stop, singular=singular)
+        lines = trace(surface, field, seeds, dirs, stop=stop, singular=singular, lean=lean)
         pieces: list = []
         points: list = []
         _keep_pieces(lines, pieces, points, dsep, 1.5 * dsep, step, placed=True)
@@ -156,7 +157,7 @@ def even_batches(
                     break
                 alive[chosen] = False
                 more = trace(surface, field, G[chosen], field(surface, G[chosen])[0][:, which],
-                             stop=stop, singular=singular)  # fmt: skip
+                             stop=stop, singular=singular, lean=lean)  # fmt: skip
                 dropped = _keep_pieces(more, pieces, points, dsep, dsep, step)
                 if dropped:  # seeds on a dropped line would give it again
                     near, _ = cKDTree(np.concatenate(dropped)).query(GP)

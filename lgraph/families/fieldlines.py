@@ -70,6 +70,9 @@ _END_RTOL = 1e-7
 _D = (-12715105075 / 11282082432, 0.0, 87487479700 / 32700410799,
       -10690763975 / 1880347072, 701980252875 / 199316789632,
       -1453857185 / 822651844, 69997945 / 29380423)  # fmt: skip
+# the same as arrays (stage combinations are matrix products in trace)
+_A_ROWS = [np.array(a) for a in _A[1:]]
+_B_ROW, _E_ROW, _D_ROW = np.array(_B), np.array(_E), np.array(_D)
 
 
 def _cubic(y0: np.ndarray, k0: np.ndarray, y1: np.ndarray, k1: np.ndarray,
@@ -100,29 +103,59 @@ def _dense_at(y0: np.ndarray, k0: np.ndarray, y1: np.ndarray, k1: np.ndarray,
     return y0 + t * (ydiff + (1 - t) * (bspl + t * (r4 + (1 - t) * r5)))
 
 
+_GRID17 = np.linspace(0.0, 1.0, 17)
+_GRID33 = np.linspace(0.0, 1.0, 33)
+
+
+def _quartic(y0: np.ndarray, k0: np.ndarray, y1: np.ndarray, k1: np.ndarray,
+             h: np.ndarray, r5: np.ndarray) -> np.ndarray:  # fmt: skip
+    """Coefficients ``(n, 5, 2)`` (constant first) of the continuous extension
+    of steps (:func:`_dense_at`) as polynomials in the step fraction."""
+    a = y1 - y0
+    hk0 = h[:, None] * k0
+    b = hk0 - a
+    r4 = a - h[:, None] * k1 - b
+    return np.stack([y0, hk0, r4 + r5 - b, -(r4 + 2 * r5), r5], axis=1)
+
+
 def _exit(C: np.ndarray, lo: np.ndarray, hi: np.ndarray, per: np.ndarray) -> np.ndarray:
-    """The fraction where each cubic (which starts inside the box ``lo..hi``
-    and ends outside it) first leaves it: the first of 16 parts that ends
-    outside, then safeguarded Newton steps on the excess over the box."""
-    grid = np.linspace(0.0, 1.0, 17)
-    t = grid[None, :, None]
-    p = ((C[:, None, 3] * t + C[:, None, 2]) * t + C[:, None, 1]) * t + C[:, None, 0]
-    first = np.argmax((((p < lo) | (p > hi)) & ~per).any(axis=2), axis=1)
-    a, b = grid[first - 1], grid[first]
+    """The fraction where each polynomial (coefficients ``(n, d + 1, 2)``,
+    constant first; it starts inside the box ``lo..hi`` and ends outside it)
+    first leaves the box: the first of 16 parts that ends outside, then
+    safeguarded Newton steps on the excess over the box (the larger of the
+    two coordinates'; callers silence floating-point warnings)."""
+    grid = _GRID17
+    deg = C.shape[1] - 1
+    powers = np.arange(deg + 1)
+    p = np.einsum("ti,nik->ntk", grid[:, None] ** powers, C)
     lo_, hi_ = np.where(per, -np.inf, lo), np.where(per, np.inf, hi)
-    one = np.ones(len(C))
+    excess = np.maximum(p - hi_, lo_ - p).max(axis=2)  # > 0 outside
+    first = np.argmax(excess > 0, axis=1)
+    a, b = grid[first - 1], grid[first]
+    D = C[:, 1:] * powers[1:, None]  # the derivative's coefficients
+    # start where the excess interpolated linearly over the part vanishes
     rows = np.arange(len(C))
-    c = 0.5 * (a + b)
+    fa, fb = excess[rows, first - 1], excess[rows, first]
+    c = a + (b - a) * np.fmin(np.fmax(fa / (fa - fb), 0.0), 1.0)
     for _ in range(6):
-        p, dp = _at(C, c, one)
-        excess = np.maximum(lo_ - p, p - hi_)  # > 0 outside
-        i = np.argmax(excess, axis=1)
-        f = excess[rows, i]
-        df = np.where(p[rows, i] > hi_[i], dp[rows, i], -dp[rows, i])
-        a, b = np.where(f > 0, a, c), np.where(f > 0, c, b)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            c = c - f / df
-        c = np.where((c > a) & (c < b), c, 0.5 * (a + b))
+        T = c[:, None] ** powers
+        p = np.einsum("ni,nik->nk", T, C)
+        dp = np.einsum("ni,nik->nk", T[:, :-1], D)
+        up, down = p - hi_, lo_ - p
+        excess = np.maximum(up, down)  # > 0 outside
+        # its slope: the upper side's where that is the nearer (inside too)
+        slope = np.where(up >= down, dp, -dp)
+        j = excess[:, 1] > excess[:, 0]  # the larger coordinate (the first on ties)
+        f = np.where(j, excess[:, 1], excess[:, 0])
+        df = np.where(j, slope[:, 1], slope[:, 0])
+        outside = f > 0
+        a, b = np.where(outside, a, c), np.where(outside, c, b)
+        new = c - f / df  # (stays on a root found: f = 0 moves a there)
+        new = np.where((new >= a) & (new <= b), new, 0.5 * (a + b))
+        if np.abs(new - c).max() <= 1e-14:  # converged (to far below _END_RTOL)
+            c = new
+            break
+        c = new
     return c
 
 
@@ -132,13 +165,16 @@ def _chord_gap(y0: np.ndarray, y1: np.ndarray, target: np.ndarray, span: np.ndar
     r0 = _rel(y0, target, span, per)
     dr = (y1 - y0) / span
     with np.errstate(invalid="ignore", divide="ignore"):
-        tc = np.clip(-np.einsum("ij,ij->i", r0, dr) / np.einsum("ij,ij->i", dr, dr), 0, 1)
-    return np.abs(r0 + np.nan_to_num(tc)[:, None] * dr).max(axis=1)
+        tc = -(r0[:, 0] * dr[:, 0] + r0[:, 1] * dr[:, 1]) / (dr[:, 0] ** 2 + dr[:, 1] ** 2)
+    tc = np.fmin(np.fmax(tc, 0.0), 1.0)[:, None]  # NaN (a step of length 0) -> 0
+    return np.abs(r0 + tc * dr).max(axis=1)
 
 
 def _rel(p: np.ndarray, seed: np.ndarray, span: np.ndarray, per: Any) -> np.ndarray:
     """Parameters relative to ``seed`` in spans (glued ones to the nearest copy
     in the cover; ``per`` is the domain)."""
+    if not any(per.glued):  # the rectangle is the cover: no copies to look for
+        return (p - seed) / span
     return (p - per.nearest_image(p, seed)) / span
 
 
@@ -147,7 +183,7 @@ def _closest(C: np.ndarray, h: np.ndarray, seed: np.ndarray, span: np.ndarray,
     """The fraction (0..1) where each cubic passes closest to its
     seed (scaled parameters): the best of 33 samples, then Newton on
     ``(p - seed) . p' = 0``; with the point and tangent there."""
-    grid = np.linspace(0.0, 1.0, 33)
+    grid = _GRID33
     t = grid[None, :, None]
     p = ((C[:, None, 3] * t + C[:, None, 2]) * t + C[:, None, 1]) * t + C[:, None, 0]
     q = _rel(p, seed[:, None], span, per)
@@ -257,13 +293,20 @@ def trace(
     length: float | None = None,
     stop: float | None = None,
     rtol: float | None = None,
+    max_step: float = FIELD_MAX_STEP,
     singular: Any = (),
+    lean: Any = None,
 ) -> FieldLines:
     """Trace the lines of ``field`` through ``seeds`` ``(m, 2)``, each starting
     along the branch nearest to ``directions[k]`` (parameter directions),
-    forward and backward, all at once.  Lines end where they pass within
+    forward and backward, all at once (steps at most ``max_step`` sizes).
+    Lines end where they pass within
     ``FIELD_SINGULAR_RTOL`` of a point of ``singular``
     (parameters of umbilics).  See the module docstring.
+
+    ``lean(surface, stop)``, where given, makes the ``oriented(uv, ref)`` the
+    steps use on domains without a twist: the field's branch nearest ``ref``
+    in few array operations (``lgraph.families.numeric.principal_oriented``).
     """
     seeds = np.asarray(seeds, float).reshape(-1, 2)
     m = len(seeds)
@@ -309,6 +352,19 @@ def trace(
             ok = np.isfinite(out).all(axis=1) & (strength > stop) & (np.abs(cb) > 0.5)
         return np.where(ok[:, None], out, 0.0), ok
 
+    if lean is not None and not twisted:
+        fast = lean(surface, stop)
+        if any(d.glued):
+            oriented = lambda uv, ref: fast(d.wrap(uv, clip=True), ref)  # noqa: E731
+        elif getattr(surface, "defined_past_domain", False):
+            # closed forms that hold past the edges (the monkey saddle's):
+            # trial stages there see the field itself, so steps that end
+            # just past an edge keep their accuracy (lines grazing an edge
+            # would crawl along it)
+            oriented = fast
+        else:  # trial stages past an edge see the field of the nearest edge point
+            oriented = lambda uv, ref: fast(np.minimum(np.maximum(uv, lo), hi), ref)  # noqa: E731
+
     # rays 0..m-1 run forward, m..2m-1 backward from the same seeds
     Y = np.concatenate([seeds, seeds])
     ref = np.asarray(directions, float).reshape(-1, 2)
@@ -323,101 +379,106 @@ def trace(
     R = 2 * m
     S = np.zeros(R)
     H = np.full(R, FIELD_FIRST_STEP * size)
-    hmin, hmax = FIELD_MIN_STEP * size, FIELD_MAX_STEP * size
+    hmin, hmax = FIELD_MIN_STEP * size, max_step * size
     closed = np.zeros(R, bool)
     left = np.zeros(R, bool)  # has been far from its seed (closing test)
     zero = np.zeros((R, 2))
     rec_i, rec_s, rec_y, rec_k, rec_r = [np.arange(R)], [S.copy()], [Y.copy()], [K.copy()], [zero]
 
-    for _iteration in range(FIELD_MAX_ITERATIONS):
-        act = np.flatnonzero(alive)
-        if not len(act):
-            break
-        y, k1 = Y[act], K[act]
-        h = np.minimum(H[act], length - S[act])
-        ks = [k1]
-        ok = np.ones(len(act), bool)
-        for a in _A[1:]:
-            yi = y + h[:, None] * sum(c * kj for c, kj in zip(a, ks) if c)
-            ki, oki = oriented(yi, ks[-1])
-            ok &= oki
-            ks.append(ki)
-        y5 = y + h[:, None] * sum(c * kj for c, kj in zip(_B, ks) if c)
-        k7, ok7 = oriented(y5, ks[-1])
-        ok &= ok7
-        ks.append(k7)
-        err = np.abs(h[:, None] * sum(c * kj for c, kj in zip(_E, ks) if c)) / span
-        err = err.max(axis=1)
-        good = ok & (err <= rtol)
-        with np.errstate(divide="ignore"):
-            fac = np.clip(0.9 * (rtol / np.maximum(err, 1e-300)) ** 0.2, 0.2, 5.0)
-        newh = np.where(ok, h * np.where(good, fac, np.minimum(fac, 0.5)), 0.1 * h)
-        # a step that cannot shrink further: a singular point (or the field's edge)
-        dead = ~good & (newh < hmin)
-        H[act] = np.minimum(newh, hmax)
-        alive[act[dead]] = False
-        g = np.flatnonzero(good)
-        if not len(g):
-            continue
-        hg = h[g]
-        step = (y[g], k1[g], y5[g], k7[g], hg)  # the steps' cubics are built where needed
-        y1, k1n = y5[g].copy(), k7[g].copy()
-        r5 = hg[:, None] * sum(c * kj[g] for c, kj in zip(_D, ks) if c)
-        stop_here = np.zeros(len(g), bool)
-        redo = np.full(len(g), np.nan)  # retry with this step (ends on an edge or the seed)
+    # (steps through singular points divide by zero; those steps are rejected)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        for _iteration in range(FIELD_MAX_ITERATIONS):
+            act = np.flatnonzero(alive)
+            if not len(act):
+                break
+            y, k1 = Y[act], K[act]
+            h = np.minimum(H[act], length - S[act])
+            hc = h[:, None]
+            # the stages' slopes as rows of one array: their combinations are products
+            # (einsum, not BLAS: its threads spin and wake slowly on a loaded machine)
+            ks = np.empty((7, 2 * len(act)))
+            ks[0] = k1.ravel()
+            ki, ok = k1, np.ones(len(act), bool)
+            for j, a in enumerate(_A_ROWS, 1):
+                ki, oki = oriented(y + hc * np.einsum("s,sn->n", a, ks[:j]).reshape(-1, 2), ki)
+                ok &= oki
+                ks[j] = ki.ravel()
+            y5 = y + hc * np.einsum("s,sn->n", _B_ROW, ks[:6]).reshape(-1, 2)
+            k7, ok7 = oriented(y5, ki)
+            ok &= ok7
+            ks[6] = k7.ravel()
+            err = np.einsum("s,sn->n", _E_ROW, ks).reshape(-1, 2)
+            err = (np.abs(hc * err) / span).max(axis=1)
+            good = ok & (err <= rtol)
+            fac = np.minimum(np.maximum(0.9 * (rtol / np.maximum(err, 1e-300)) ** 0.2, 0.2), 5.0)
+            newh = np.where(ok, h * np.where(good, fac, np.minimum(fac, 0.5)), 0.1 * h)
+            # a step that cannot shrink further: a singular point (or the field's edge)
+            dead = ~good & (newh < hmin)
+            H[act] = np.minimum(newh, hmax)
+            alive[act[dead]] = False
+            g = np.flatnonzero(good)
+            if not len(g):
+                continue
+            hg = h[g]
+            step = (y[g], k1[g], y5[g], k7[g], hg)  # the steps' cubics are built where needed
+            y1, k1n = y5[g].copy(), k7[g].copy()
+            r5 = hg[:, None] * np.einsum("s,sn->n", _D_ROW, ks).reshape(-1, 2)[g]
+            stop_here = np.zeros(len(g), bool)
+            redo = np.full(len(g), np.nan)  # retry with this step (ends on an edge or the seed)
 
-        drop = np.zeros(len(g), bool)  # ends where it starts: no new node
-        ends = (y1, stop_here, drop)
-        # leaving the patch across a non-periodic side: end exactly on it
-        out = np.flatnonzero((((y1 < lo) | (y1 > hi)) & ~per).any(axis=1))
-        if len(out):
-            th = _exit(_cubic(*(a[out] for a in step)), lo, hi, per)
-            last = (th >= 1 - _END_RTOL) | (th * hg[out] <= 10 * hmin)
-            box = (np.where(per, -np.inf, lo), np.where(per, np.inf, hi))
-            _finish(ends, out[last], th[last], np.clip(y1[out[last]], *box))
-            # retry with a step that ends just past the edge
-            redo[out[~last]] = np.minimum(th[~last] * (1 + 0.1 * _END_RTOL), 1) * hg[out[~last]]
-        # closing: a forward line passing its seed again after leaving it
-        f = np.flatnonzero((act[g] < m) & np.isnan(redo) & ~stop_here)
-        if len(f):
-            gap = _chord_gap(y[g[f]], y1[f], seeds[act[g[f]]], span, d)
-            near = f[(gap <= 0.05) & left[act[g[f]]]]
-            left[act[g[f[gap > 0.05]]]] = True
-            if len(near):
-                seed = seeds[act[g[near]]]
-                th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], seed, span, d)
-                hit = np.abs(_rel(p, seed, span, d)).max(axis=1) < FIELD_CLOSE_RTOL
-                last = hit & ((th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin))
-                # the loop ends exactly on its seed (shifted by whole periods)
-                shift = _rel(p[last], seed[last], span, d) * span
-                _finish(ends, near[last], th[last], p[last] - shift)
-                closed[act[g[near[last]]]] = True
-                alive[act[g[near[last]]] + m] = False  # the backward half is not needed
-                redo[near[hit & ~last]] = th[hit & ~last] * hg[near[hit & ~last]]
-        # reaching a singular point (an umbilic): the line ends where it passes it
-        for point in singular:
-            f = np.flatnonzero(np.isnan(redo) & ~stop_here)
-            gap = _chord_gap(y[g[f]], y1[f], np.broadcast_to(point, (len(f), 2)), span, d)
-            near = f[gap <= FIELD_SINGULAR_RTOL]
-            if len(near):
-                target = np.broadcast_to(point, (len(near), 2))
-                th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], target, span, d)
-                last = (th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin)
-                _finish(ends, near[last], th[last], y1[near[last]])
-                redo[near[~last]] = th[~last] * hg[near[~last]]
-        again = ~np.isnan(redo)
-        H[act[g[again]]] = redo[again]
-        sel = ~again & ~drop
-        acc = act[g[sel]]
-        Y[acc], K[acc] = y1[sel], k1n[sel]
-        S[acc] += hg[sel]
-        alive[act[g[stop_here]]] = False  # after their last node
-        alive[acc[S[acc] >= length * (1 - 1e-12)]] = False
-        rec_i.append(acc)
-        rec_s.append(S[acc].copy())
-        rec_y.append(y1[sel])
-        rec_k.append(k1n[sel])
-        rec_r.append(r5[sel])
+            drop = np.zeros(len(g), bool)  # ends where it starts: no new node
+            ends = (y1, stop_here, drop)
+            # leaving the patch across a non-periodic side: end exactly on it
+            out = np.flatnonzero((((y1 < lo) | (y1 > hi)) & ~per).any(axis=1))
+            if len(out):
+                # where the method's own continuous extension leaves the patch
+                th = _exit(_quartic(*(a[out] for a in step), r5[out]), lo, hi, per)
+                last = (th >= 1 - _END_RTOL) | (th * hg[out] <= 10 * hmin)
+                box = (np.where(per, -np.inf, lo), np.where(per, np.inf, hi))
+                _finish(ends, out[last], th[last], np.clip(y1[out[last]], *box))
+                # retry with a step that ends just past the edge
+                redo[out[~last]] = np.minimum(th[~last] * (1 + 0.1 * _END_RTOL), 1) * hg[out[~last]]
+            # closing: a forward line passing its seed again after leaving it
+            f = np.flatnonzero((act[g] < m) & np.isnan(redo) & ~stop_here)
+            if len(f):
+                gap = _chord_gap(y[g[f]], y1[f], seeds[act[g[f]]], span, d)
+                near = f[(gap <= 0.05) & left[act[g[f]]]]
+                left[act[g[f[gap > 0.05]]]] = True
+                if len(near):
+                    seed = seeds[act[g[near]]]
+                    th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], seed, span, d)
+                    hit = np.abs(_rel(p, seed, span, d)).max(axis=1) < FIELD_CLOSE_RTOL
+                    last = hit & ((th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin))
+                    # the loop ends exactly on its seed (shifted by whole periods)
+                    shift = _rel(p[last], seed[last], span, d) * span
+                    _finish(ends, near[last], th[last], p[last] - shift)
+                    closed[act[g[near[last]]]] = True
+                    alive[act[g[near[last]]] + m] = False  # the backward half is not needed
+                    redo[near[hit & ~last]] = th[hit & ~last] * hg[near[hit & ~last]]
+            # reaching a singular point (an umbilic): the line ends where it passes it
+            for point in singular:
+                f = np.flatnonzero(np.isnan(redo) & ~stop_here)
+                gap = _chord_gap(y[g[f]], y1[f], np.broadcast_to(point, (len(f), 2)), span, d)
+                near = f[gap <= FIELD_SINGULAR_RTOL]
+                if len(near):
+                    target = np.broadcast_to(point, (len(near), 2))
+                    th, p, _ = _closest(_cubic(*(a[near] for a in step)), hg[near], target, span, d)
+                    last = (th >= 1 - _END_RTOL) | (th * hg[near] <= 10 * hmin)
+                    _finish(ends, near[last], th[last], y1[near[last]])
+                    redo[near[~last]] = th[~last] * hg[near[~last]]
+            again = ~np.isnan(redo)
+            H[act[g[again]]] = redo[again]
+            sel = ~again & ~drop
+            acc = act[g[sel]]
+            Y[acc], K[acc] = y1[sel], k1n[sel]
+            S[acc] += hg[sel]
+            alive[act[g[stop_here]]] = False  # after their last node
+            alive[acc[S[acc] >= length * (1 - 1e-12)]] = False
+            rec_i.append(acc)
+            rec_s.append(S[acc].copy())
+            rec_y.append(y1[sel])
+            rec_k.append(k1n[sel])
+            rec_r.append(r5[sel])
 
     ri = np.concatenate(rec_i)
     order = np.lexsort((np.concatenate(rec_s), ri))

@@ -37,6 +37,66 @@ from .fieldlines import FieldLines, trace
 __all__ = ["field_line_batches", "numeric_lines_of_curvature", "umbilics"]
 
 
+def forms_of(surface: Any) -> Any:
+    """``forms(uv) -> (g11, g12, g22, L11, L12, L22)`` at rows of ``uv``: the
+    surface's own ``fundamental_forms(u1, u2)`` where it has one (closed
+    forms, such as the monkey saddle's), else from its derivatives."""
+    own = getattr(surface, "fundamental_forms", None)
+    if own is not None:
+        return lambda uv: own(uv[:, 0], uv[:, 1])
+
+    def forms(uv: np.ndarray) -> tuple[np.ndarray, ...]:
+        _x1, _x2, g, L = _frame(surface, uv)
+        return g + L
+
+    return forms
+
+
+def principal_oriented(surface: Any, stop: float) -> Any:
+    """``oriented(uv, ref)`` of :func:`~lgraph.families.fieldlines.trace` for the principal field
+    (:func:`lgraph.curvature.principal_field`, the same formulas) in few array
+    operations: both branches at once as ``(2, n)`` arrays, each normalized
+    only after the branch nearest ``ref`` is chosen."""
+    forms = forms_of(surface)
+    sign = np.array([[-1.0], [1.0]])
+
+    def oriented(uv: np.ndarray, ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        g11, g12, g22, L11, L12, L22 = forms(uv)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            g = g11 * g22 - g12 * g12
+            H = (g11 * L22 - 2 * g12 * L12 + g22 * L11) / (2 * g)
+            K = (L11 * L22 - L12 * L12) / g
+            root = np.sqrt(np.maximum(H * H - K, 0.0))
+            # strength = 2 root / (|H - root| + |H + root|) = root / max(|H|, root) > stop
+            strong = root > stop * np.abs(H)
+            k = H + sign * root  # (2, n): k1 <= k2
+            # the kernel of L - k G from its longer row (lgraph.curvature._direction_for)
+            a11, a12, a22 = L11 - k * g11, L12 - k * g12, L22 - k * g22
+            first = np.abs(a11) >= np.abs(a22)
+            d0 = np.where(first, a12, a22)
+            d1 = np.where(first, -a11, -a12)
+            norm = np.sqrt(g11 * d0 * d0 + 2 * g12 * d0 * d1 + g22 * d1 * d1)
+            r0, r1 = ref[:, 0], ref[:, 1]
+            c = (d0 * (g11 * r0 + g12 * r1) + d1 * (g12 * r0 + g22 * r1)) / norm
+            b = np.abs(c[1]) > np.abs(c[0])
+            cb = np.where(b, c[1], c[0])
+            scale = np.where(cb < 0, -1.0, 1.0) / np.where(b, norm[1], norm[0])
+            out = np.empty_like(uv)
+            out[:, 0] = np.where(b, d0[1], d0[0]) * scale
+            out[:, 1] = np.where(b, d1[1], d1[0]) * scale
+            ok = np.isfinite(out).all(axis=1) & strong & (np.abs(cb) > 0.5)
+        out[~ok] = 0.0
+        return out, ok
+
+    return oriented
+
+
+def lean_oriented(field: Any) -> Any:
+    """The ``lean`` factory of :func:`~lgraph.families.fieldlines.trace` for
+    ``field`` (``None`` where there is none)."""
+    return principal_oriented if field is principal_field else None
+
+
 def _parameter_lines_are_field_lines(surface: Any, field: Any) -> bool:
     """Whether the parameter lines are the field's lines, checked on a grid:
     ``g12 = L12 = 0`` (lines of curvature, the paper's Proposition 4.1) or
@@ -57,7 +117,7 @@ def _parameter_lines_are_field_lines(surface: Any, field: Any) -> bool:
 def _umbilic_residual(surface: Any, uv: np.ndarray, kappa: float) -> np.ndarray:
     """``(A, B, C)`` of equation (3.3) (``A du1^2 + B du1 du2 + C du2^2 = 0``),
     scaled: all three vanish exactly at umbilics (flat ones included)."""
-    _x1, _x2, (g11, g12, g22), (L11, L12, L22) = _frame(surface, uv)
+    g11, g12, g22, L11, L12, L22 = forms_of(surface)(uv)
     scale = (g11 * g22 * kappa)[:, None]
     return np.stack([L11 * g12 - L12 * g11, L11 * g22 - L22 * g11, L12 * g22 - L22 * g12],
                     axis=1) / scale  # fmt: skip
@@ -107,7 +167,11 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
             adj_b = np.stack([M[:, 1, 1] * b[:, 0] - M[:, 0, 1] * b[:, 1],
                               M[:, 0, 0] * b[:, 1] - M[:, 1, 0] * b[:, 0]], axis=1)  # fmt: skip
             step = adj_b / det[:, None]
-        u = u + np.clip(np.nan_to_num(step), -0.1 * span, 0.1 * span)
+        step = np.clip(np.nan_to_num(step), -0.1 * span, 0.1 * span)
+        moved = d.clip(u + step) - u  # (iterates pushed past an edge stay on it)
+        u = u + step
+        if not np.abs(moved / span).max(initial=0.0) > 1e-14:  # every iterate has settled
+            break
     u = d.wrap(d.clip(u), clip=False)
     f = np.linalg.norm(_umbilic_residual(surface, u, kappa), axis=1)
     inside = np.all((u >= lo) & (u <= lo + span), axis=1)
@@ -119,12 +183,12 @@ def umbilics(surface: Any, n: int = 24) -> np.ndarray:
     return np.array(keep).reshape(-1, 2)
 
 
-def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, np.ndarray]:
-    """Points about ``step`` apart along lines ``ks`` and the line of each
-    (all lines evaluated in one call)."""
+def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, ...]:
+    """Points about ``step`` apart along lines ``ks``, the line of each and
+    its arc length (all lines evaluated in one call)."""
     ks = np.asarray(ks, int)
     if not len(ks):
-        return np.empty((0, 3)), np.empty(0, int)
+        return np.empty((0, 3)), np.empty(0, int), np.empty(0)
     a, b = -lines.ends[1, ks], lines.ends[0, ks]
     counts = np.maximum(np.ceil((b - a) / step).astype(int) + 1, 2)
     ids = np.repeat(ks, counts)
@@ -132,7 +196,7 @@ def _dense(lines: FieldLines, ks: Any, step: float) -> tuple[np.ndarray, np.ndar
     frac = (np.arange(len(ids)) - first) / np.repeat(counts - 1, counts)
     t = np.repeat(a, counts) + frac * np.repeat(b - a, counts)
     uv = lines.domain.wrap(lines.uv(ids, t), clip=False)
-    return lines.surface.point(uv[:, 0], uv[:, 1]), ids
+    return lines.surface.point(uv[:, 0], uv[:, 1]), ids, t
 
 
 def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tuple) -> list[int]:
@@ -151,49 +215,62 @@ def _select(surface: Any, lines: FieldLines, cand: np.ndarray, n: int, grid: tup
     cand = [int(k) for k in cand if lines.ends[0, k] + lines.ends[1, k] > 0]
     if not cand:
         return []
-    p, ids = _dense(lines, cand, coarse)
-    # squared distance of every grid point to every candidate (chunks of ~4M)
+    p, ids, t_of = _dense(lines, cand, coarse)
+    # squared distance of every grid point to every candidate: the least
+    # |p|^2 - 2 p.g over each candidate's points, plus |g|^2 (chunks of ~50k,
+    # which stay in the cache)
     bounds = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
     sq = np.empty((len(cand), len(GP)))
     g2 = np.einsum("ij,ij->i", GP, GP)
     p2 = np.einsum("ij,ij->i", p, p)
-    per_chunk = max(1, int(4e6 // max(len(GP) * len(p) / len(cand), 1)))
+    m2G = np.ascontiguousarray(-2.0 * GP.T)
+    per_chunk = max(1, int(5e4 // max(len(GP) * len(p) / len(cand), 1)))
     for c0 in range(0, len(cand), per_chunk):
         c1 = min(c0 + per_chunk, len(cand))
         lo_, hi_ = bounds[c0], (bounds[c1] if c1 < len(cand) else len(p))
-        d2 = g2[None, :] + p2[lo_:hi_, None] - 2 * (p[lo_:hi_] @ GP.T)
+        d2 = np.einsum("ij,jk->ik", p[lo_:hi_], m2G)  # not BLAS: its threads wake slowly
+        d2 += p2[lo_:hi_, None]
         sq[c0:c1] = np.minimum.reduceat(d2, bounds[c0:c1] - lo_, axis=0)
+    sq += g2
     sq = np.maximum(sq, 0.0)
     seed3 = surface.points(surface.domain.wrap(lines.uv(cand, np.zeros(len(cand))), clip=False))
     # which candidate seeds lie on which other candidate line (it would be
-    # drawn twice): segments of the fine polylines next to each seed
+    # drawn twice): a seed on a line lies within half a coarse step of one of
+    # its samples; there the line is sampled finely over a coarse step either
+    # side and the seed's distance to those segments measured
     from scipy.spatial import cKDTree
 
     tol = FIELD_DUPLICATE_RTOL * size
     fine = 2e-3 * size
-    q, qid = _dense(lines, cand, fine)
-    row_of = {k: r for r, k in enumerate(cand)}
+    row_of = np.full(lines.m, -1)
+    row_of[cand] = np.arange(len(cand))
+    pairs = cKDTree(seed3).sparse_distance_matrix(
+        cKDTree(p), 0.5 * coarse + tol, output_type="ndarray"
+    )
+    j, near = pairs["i"].astype(int), pairs["j"].astype(int)
+    other = ids[near] != np.asarray(cand)[j]
+    j, near = j[other], near[other]
+    k = ids[near]
+    offsets = np.linspace(-coarse, coarse, int(np.ceil(2 * coarse / fine)) + 1)
+    t = np.clip(
+        t_of[near][:, None] + offsets, -lines.ends[1, k][:, None], lines.ends[0, k][:, None]
+    )
+    uv = lines.domain.wrap(lines.uv(np.repeat(k, len(offsets)), t.ravel()), clip=False)
+    q = surface.point(uv[:, 0], uv[:, 1]).reshape(len(k), len(offsets), 3)
+    qa, ab = q[:, :-1], np.diff(q, axis=1)
+    rel = seed3[j][:, None] - qa
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tt = np.einsum("ijk,ijk->ij", rel, ab) / np.einsum("ijk,ijk->ij", ab, ab)
+    tt = np.fmin(np.fmax(tt, 0.0), 1.0)[..., None]  # NaN (a point twice) -> 0
+    dist = np.sqrt((((rel - tt * ab) ** 2).sum(axis=2)).min(axis=1))
     on_line = np.zeros((len(cand), len(cand)), bool)
-    for j, near in enumerate(cKDTree(q).query_ball_point(seed3, r=fine + tol)):
-        near = np.asarray(near, int)
-        near = near[qid[near] != cand[j]]
-        if not len(near):
-            continue
-        a = np.concatenate([near, near])
-        b = np.concatenate([np.maximum(near - 1, 0), np.minimum(near + 1, len(q) - 1)])
-        a, b = a[qid[a] == qid[b]], b[qid[a] == qid[b]]
-        ab = q[b] - q[a]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            tt = np.clip(np.einsum("ij,ij->i", seed3[j] - q[a], ab)
-                         / np.einsum("ij,ij->i", ab, ab), 0, 1)  # fmt: skip
-        dist = np.linalg.norm(q[a] + np.nan_to_num(tt)[:, None] * ab - seed3[j], axis=1)
-        for k in np.unique(qid[a][dist <= tol]):
-            on_line[j, row_of[int(k)]] = True
+    hit = dist <= tol
+    on_line[j[hit], row_of[k[hit]]] = True
     best = np.full(len(GP), np.inf)
     usable = np.ones(len(cand), bool)
     picked: list[int] = []
     while len(picked) < n and usable.any():
-        energy = np.minimum(best, sq) @ weight
+        energy = np.einsum("ij,j->i", np.minimum(best, sq), weight)  # (not BLAS)
         energy = np.round(energy / max(float(energy[usable].max()), 1e-300), 9)
         row = int(np.flatnonzero(usable)[np.argmin(energy[usable])])
         picked.append(cand[row])
@@ -237,11 +314,23 @@ def field_line_batches(
     )  # fmt: skip
     check_field_lines(owner, n1, n2, spacing)
     stop = field.stop if stop is None else stop
+    lean = lean_oriented(field)
     singular = umbilics(surface) if field is principal_field else np.empty((0, 2))
     c = _center_seed(surface, field, stop)
     D, _, G = field(surface, np.array([c]))
-    # the lines through the centre place seeds only: a loose tolerance will do
-    both = trace(surface, field, [c, c], D[0], stop=stop, rtol=1e-6, singular=singular)
+    # the lines through the centre place seeds only: a loose tolerance and
+    # long steps will do (each seed's line is traced exactly)
+    both = trace(
+        surface,
+        field,
+        [c, c],
+        D[0],
+        stop=stop,
+        rtol=1e-4,
+        max_step=0.2,
+        singular=singular,
+        lean=lean,
+    )
     # the branch running like the u1 = const lines (along x2) at the centre
     x1, x2 = surface.derivatives(c[0], c[1])
     e = D[0, :, :1] * x1 + D[0, :, 1:] * x2
@@ -249,7 +338,7 @@ def field_line_batches(
     if spacing == "even":
         from ._even import even_batches
 
-        return even_batches(surface, field, both, a, n1, n2, stop, family, singular)
+        return even_batches(surface, field, both, a, n1, n2, stop, family, singular, lean)
     grid = _grid(surface, field, stop)
     G, _, weight = grid
     # candidate seeds of both families, traced together: many along the
@@ -273,7 +362,13 @@ def field_line_batches(
         dirs.append(d_f[keep])
         fam.append(np.full(int(keep.sum()), n))
     lines = trace(
-        surface, field, np.concatenate(seeds), np.concatenate(dirs), stop=stop, singular=singular
+        surface,
+        field,
+        np.concatenate(seeds),
+        np.concatenate(dirs),
+        stop=stop,
+        singular=singular,
+        lean=lean,
     )
     out, start = [], 0
     for f in fam:

@@ -71,6 +71,31 @@ class MonkeySaddle(Surface):
             _stack(z, z, self.c * (-6 * u1)),
         )
 
+    def fundamental_forms(self, u1: Any, u2: Any) -> tuple[np.ndarray, ...]:
+        """``(g11, g12, g22, L11, L12, L22)`` in closed form: the graph of
+        ``f`` has ``g_ik = delta_ik + f_i f_k`` and ``L_ik = f_ik / W`` with
+        ``W = sqrt(1 + f_1^2 + f_2^2)`` (normal ``x1 x x2``).  What the
+        numeric lines of curvature evaluate (``lgraph.families.fieldlines``).
+
+        >>> s = MonkeySaddle()
+        >>> from lgraph.curvature import fundamental_forms
+        >>> bool(np.allclose(s.fundamental_forms(0.3, -0.2), fundamental_forms(s, 0.3, -0.2)))
+        True
+        """
+        if not (type(u1) is type(u2) is np.ndarray and u1.shape == u2.shape):
+            u1, u2 = _uv(u1, u2)  # (the tracer's rows need no broadcasting)
+        c = self.c
+        f1, f2 = 3 * c * (u1 * u1 - u2 * u2), -6 * c * u1 * u2
+        g12 = f1 * f2
+        g11, g22 = 1 + f1 * f1, 1 + f2 * f2
+        w = 6 * c / np.sqrt(g11 + f2 * f2)
+        L11 = w * u1
+        return g11, g12, g22, L11, -w * u2, -L11
+
+    #: its formulas hold past the square: numeric lines of curvature may
+    #: evaluate the fundamental forms there (``lgraph.families.fieldlines``)
+    defined_past_domain = True
+
     # the cubic ray test costs about as much as the torus's quartic one
     hit_cost = 10.0
     hit_call_cost = 500.0
