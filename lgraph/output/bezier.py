@@ -42,6 +42,8 @@ from typing import Any
 import attrs
 import numpy as np
 
+from .._validate import unchecked
+
 __all__ = [
     "CurveRef",
     "fit_pieces",
@@ -112,17 +114,10 @@ def made_curve_ref(
 ) -> CurveRef:
     """``CurveRef(...)`` for ``t0``, ``t1`` already floats and ``closed`` a
     bool, without its converters (one a stroke of every render)."""
-    r = object.__new__(CurveRef)
-    _set = object.__setattr__
-    _set(r, "batch", batch)
-    _set(r, "index", index)
-    _set(r, "transform", transform)
-    _set(r, "projector", projector)
-    _set(r, "t", t)
-    _set(r, "t0", t0)
-    _set(r, "t1", t1)
-    _set(r, "closed", closed)
-    return r
+    return unchecked(
+        CurveRef, batch=batch, index=index, transform=transform, projector=projector,
+        t=t, t0=t0, t1=t1, closed=closed,
+    )  # fmt: skip
 
 
 def unwrapped(t: np.ndarray, lens: np.ndarray, period: np.ndarray) -> np.ndarray:

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._validate import unchecked
 from ..output.bezier import made_curve_ref, unwrapped
 from ..output.drawing import Stroke
 from ..scene.style import Style
@@ -162,19 +163,10 @@ def made_stroke(
     curve=curve)`` for arguments its converters leave as they are (float
     arrays, ``uv`` a float array or None), without calling them: the renderer
     makes one a stroke, thousands for a large scene."""
-    s = object.__new__(Stroke)
-    _set = object.__setattr__
-    _set(s, "xy", xy)
-    _set(s, "xyz", xyz)
-    _set(s, "uv", uv)
-    _set(s, "visible", visible)
-    _set(s, "family", family)
-    _set(s, "surface", surface)
-    _set(s, "style", style)
-    _set(s, "occlusion", occlusion)
-    _set(s, "halo", None)
-    _set(s, "curve", curve)
-    return s
+    return unchecked(
+        Stroke, xy=xy, xyz=xyz, uv=uv, visible=visible, family=family, surface=surface,
+        style=style, occlusion=occlusion, halo=None, curve=curve,
+    )  # fmt: skip
 
 
 def _own_surface(surface: Any, node: RenderNode) -> Any:
