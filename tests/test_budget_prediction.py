@@ -112,20 +112,8 @@ def test_the_prediction_is_close_to_the_refined_count() -> None:
     """On ordinary figures the predicted count is within a factor 2 of the
     refined one (the margin ``POINTS_PREDICTION_MARGIN`` is 4; on the gallery
     the ratio is 0.91 to 1.54)."""
-    predicted, refined = [], []
-    predict, refine = render_module.predict_points, render_module.refine
-
-    def spy_predict(s: Any, abs_tol: Any) -> int:
-        predicted.append(predict(s, abs_tol))
-        return predicted[-1]
-
-    def spy_refine(s: Any, *args: Any) -> None:
-        refine(s, *args)
-        refined.append(len(s.t))
-
     with pytest.MonkeyPatch.context() as m:
-        m.setattr(render_module, "predict_points", spy_predict)
-        m.setattr(render_module, "refine", spy_refine)
+        predicted, refined = _spy_prediction(m)
         for hidden in (False, True):
             scene = lg.Scene()
             scene.add(lg.Ellipsoid(1.5, 1, 0.7), lg.LinesOfCurvature(10, 10))
