@@ -112,6 +112,13 @@ class Ring(NamedTuple):
         owner = None if self.owner is None else self.owner[rows]
         return self._replace(gi=self.gi[rows], gj=self.gj[rows], owner=owner)
 
+    def patch_free(self) -> np.ndarray | None:
+        """Whether each patch itself holds no contour (None if not known)."""
+        if self.free is None:
+            return None
+        a, b = self.gi // 2, self.gj // 2
+        return self.free[a, b] if self.owner is None else self.free[self.owner, a, b]
+
 
 #: the sample fractions of a patch along each parameter
 _F = np.array([0.0, 0.5, 1.0])
@@ -126,7 +133,6 @@ def facet_test(
     c0: np.ndarray,
     c1: np.ndarray,
     ring: Ring | None = None,
-    free: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Rays ``o + s v`` (``0 <= s <= smax``) against the facets of patches.
 
@@ -136,9 +142,9 @@ def facet_test(
     belong to), a near miss across a patch's border needs no start of its
     own (the triangle across, in the neighbouring patch, holds the trace)
     unless the border is the grid's (the domain's or the parent's) or the
-    triangle across faces the other way (a fold).  ``free (P,)`` marks
-    patches known to hold no contour (:func:`fold_free`): their image is one
-    sheet, with no fold to hide roots.
+    triangle across faces the other way (a fold).  Patches the ring knows to
+    hold no contour (:func:`fold_free`, :meth:`Ring.patch_free`) have an image
+    of one sheet, with no fold to hide roots.
 
     Returns ``(pair, uv, s, near, fold)``: the starts of Newton's method
     (pair, parameters, distance along the ray; ``near``: from a near miss,
@@ -186,10 +192,10 @@ def facet_test(
     kept = np.flatnonzero(keep)
     X, Y, Z, S, o, e1, e2 = (x[kept] for x in (X, Y, Z, S, o, e1, e2))
     pad, c0, c1, smax, vn = pad[kept], c0[kept], c1[kept], smax[kept], vn[kept]
-    if free is not None:
-        free = free[kept]
+    free = None
     if ring is not None:
         ring = ring.take(kept)
+        free = ring.patch_free()
     P = len(kept)
     A, B, C = (TRIANGLES[:, i] for i in range(3))
     ax_, ay_, bx, by, cx, cy = X[:, A], Y[:, A], X[:, B], Y[:, B], X[:, C], Y[:, C]

@@ -202,7 +202,7 @@ def hits(
         return out
     H = _hierarchy(surface)
     view = _common_view(H, o, v, smax)
-    free = None if view is None else fold_free(H.grid, *view).ravel()
+    free = None if view is None else fold_free(H.grid, *view)  # (n, n) leaves
     for a in range(0, nray, HIT_CHUNK_RAYS):
         b = slice(a, a + HIT_CHUNK_RAYS)
         out[b] = _hits_chunk(surface, H, o[b], v[b], smax[b], own[b], count, view, free)
@@ -260,7 +260,6 @@ def _hits_chunk(
     c1 = c0 + np.array([H.h1, H.h2])
     S = np.take(H.leaf_samples, leaf, axis=0)
     pad = H.leaf_pad[leaf]
-    fr = None if free is None else free[leaf]
     own_uv = np.full((nray, 2), np.nan)
 
     def newton(pr: np.ndarray, uv: np.ndarray, s: np.ndarray, steps: int) -> np.ndarray:
@@ -283,17 +282,15 @@ def _hits_chunk(
         own_uv[rr[m]] = uv[m]
         return ~valid & ~(conv & _in_cell(surface, uv, a, b, 1.5))
 
-    leaf_free = None if free is None else free.reshape(H.n, H.n)
-    ring = Ring(H.grid, 2 * i, 2 * j, H.periodic, None, leaf_free)  # the leaves' neighbours
+    ring = Ring(H.grid, 2 * i, 2 * j, H.periodic, None, free)  # the leaves' neighbours
     for depth in range(HIT_MAX_DEPTH + 1):
         if not count:
             keep = ~out[r]
             r, c0, c1, S, pad = r[keep], c0[keep], c1[keep], S[keep], pad[keep]
-            fr = None if fr is None else fr[keep]
             ring = ring.take(keep)
         if not len(r):
             break
-        pair, uv, s, near, redo = facet_test(S, pad, o[r], v[r], smax[r], c0, c1, ring, fr)
+        pair, uv, s, near, redo = facet_test(S, pad, o[r], v[r], smax[r], c0, c1, ring)
         if count and depth < HIT_MAX_DEPTH:
             # a patch to be split is searched in its quarters: no start here
             go = ~redo[pair]
@@ -314,9 +311,9 @@ def _hits_chunk(
             if len(pr):
                 q = S[pr] - o[r[pr], None, :]
                 z = np.einsum("pkc,pc->pk", q, v[r[pr]]) / (vnorm[r[pr]] ** 2)[:, None]
-                with np.errstate(invalid="ignore"):
-                    zm = np.where(np.isfinite(z), z, np.nan)
-                    s_mid = np.nanmean(np.where(np.isnan(zm).all(1, keepdims=True), 0.0, zm), 1)
+                z = np.where(np.isfinite(z), z, np.nan)
+                z[np.isnan(z).all(1)] = 0.0  # no finite sample: start at the origin
+                s_mid = np.nanmean(z, 1)
                 newton(
                     pr, 0.5 * (c0[pr] + c1[pr]), np.clip(s_mid, 0.0, smax[r[pr]]), HIT_NEWTON_STEPS
                 )
@@ -324,13 +321,15 @@ def _hits_chunk(
         pr = np.flatnonzero(redo)
         if not len(pr):
             break
+        parent_free = ring.patch_free()
         r, c0, c1, S, pad, quarter_free, G = _split(surface, r[pr], c0[pr], c1[pr], size, view)
         q = np.tile(np.arange(4), len(pr))  # quarter 2 a + b, the order of _split
-        parent = np.repeat(np.arange(len(pr)), 4)
-        if fr is not None:  # a patch without contour: its quarters too
-            fr = np.repeat(fr[pr], 4) | quarter_free
-        sib = None if fr is None else fr.reshape(len(pr), 2, 2)
-        ring = Ring(G, 2 * (q // 2), 2 * (q % 2), (False, False), parent, sib)
+        sib = None
+        if parent_free is not None:  # a patch without contour: its quarters too
+            sib = parent_free[pr, None, None] | quarter_free
+        ring = Ring(
+            G, 2 * (q // 2), 2 * (q % 2), (False, False), np.repeat(np.arange(len(pr)), 4), sib
+        )
     # rays from points on the surface: the root next to the own root
     cand = np.nonzero((own == ON) & ~out & np.isfinite(own_uv[:, 0]))[0]
     if count:  # the root next to the own one may be missing while others were found
@@ -360,7 +359,7 @@ def _split(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, Any, np.ndarray]:
     """The four quarters of patches ``[c0, c1]`` (of rays ``r``): their rays,
     corners, 3 x 3 samples, paddings, (with a common ``view``) which of them
-    hold no contour, and the ``5 x 5`` grid of samples of every patch."""
+    hold no contour (``(m, 2, 2)``), and the ``5 x 5`` grid of samples of every patch."""
     f = np.linspace(0.0, 1.0, 5)
     u1 = c0[:, 0, None] + (c1[:, 0] - c0[:, 0])[:, None] * f
     u2 = c0[:, 1, None] + (c1[:, 1] - c0[:, 1])[:, None] * f
@@ -376,7 +375,7 @@ def _split(
         pad = _cell_pad(Q) + 1e-9 * size
     half = 0.5 * (c1 - c0)
     n0 = (c0[:, None, :] + np.stack([a, b], 1)[None] * half[:, None, :]).reshape(4 * m, 2)
-    free = None if view is None else fold_free(G, *view).reshape(4 * m)
+    free = None if view is None else fold_free(G, *view)  # (m, 2, 2)
     corners = n0, n0 + np.repeat(half, 4, axis=0)
     return np.repeat(r, 4), *corners, Q.reshape(4 * m, 9, 3), pad, free, G
 
