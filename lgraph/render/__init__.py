@@ -23,6 +23,11 @@
    the ``hidden_style`` rule (``lgraph.render.strokes``);
 8. labels and point marks are placed and hidden like the lines
    (:mod:`lgraph.render.marks`).
+
+A scene of one ellipsoid drawn by exact ellipses (its parameter lines and
+contour, nothing else) takes steps 2 to 6 in closed form instead, without a
+ray test (:mod:`lgraph.render.lone`): the same strokes at a fraction of the
+fixed cost.
 """
 
 from __future__ import annotations
@@ -46,6 +51,7 @@ from .crossings import seed_net_crossings
 from .depth import occlusion_depth
 from .flips import locate_flips, seed_crossings
 from .intersections import intersection_batches, meeting_pairs
+from .lone import lone_ellipsoid, lone_visibility
 from .occlusion import NotBatchable, Occlusion
 from .prediction import RayMeter, Work, later_work, predict_points, probe_ray_tests
 from .sampling import Samples, check_points, refine
@@ -298,6 +304,38 @@ def _render(
     # budgets predicted: a sampling, or ray tests, far over the budget are
     # refused before the ray tests (:mod:`lgraph.render.prediction`)
     predicted = predict_points(s, chord_tol)
+    lone = lone_ellipsoid(nodes, s)
+    if lone is not None:  # one ellipsoid: visibility in closed form (render/lone.py)
+        vis, depth = None, lone_visibility(s, nodes[lone], chord_tol, hidden_lines)
+    else:
+        vis, depth = _visibility(
+            s, nodes, views, partner, meeting, drawn_meetings, predicted, abs_tol, diag,
+            hidden_lines,
+        )  # fmt: skip
+    strokes = run_strokes(s, nodes, hidden_lines, rule, [1e-12 * d for d in diag], depth)
+    _warn_unused_styles(s, nodes)
+    return [
+        _with_marks(scene, strokes[k], nodes, p, hidden_lines, rule, page, vis, k)
+        for k, p in enumerate(views.projectors)
+    ]
+
+
+def _visibility(
+    s: Samples,
+    nodes: tuple[RenderNode, ...],
+    views: Views,
+    partner: dict[int, int],
+    meeting: list[tuple[int, int]],
+    drawn_meetings: list[tuple[int, int]],
+    predicted: int,
+    abs_tol: list[float],
+    diag: list[float],
+    hidden_lines: bool,
+) -> tuple[Occlusion, np.ndarray]:
+    """The general pipeline's visibility stages (module docstring): every
+    sample tested, chords refined, the net's crossings seeded, flips
+    located; the scene's occlusion test and every sample's occlusion depth."""
+    chord_tol = abs_tol[0] if views.k == 1 else np.array(abs_tol)[s.view]
     shared = _shared_owners(s, partner, len(nodes))
     vis = Occlusion(nodes, views, shared)
     # with hidden lines, a hiding surface asked one by one that draws no
@@ -343,15 +381,8 @@ def _render(
     locate_flips(s, vis)
     # hidden runs split where the number of sheets in front changes
     if hidden_lines:
-        depth = occlusion_depth(s, vis, every, diag)
-    else:
-        depth = s.hidden.astype(np.int64)
-    strokes = run_strokes(s, nodes, hidden_lines, rule, [1e-12 * d for d in diag], depth)
-    _warn_unused_styles(s, nodes)
-    return [
-        _with_marks(scene, strokes[k], nodes, p, hidden_lines, rule, page, vis, k)
-        for k, p in enumerate(views.projectors)
-    ]
+        return vis, occlusion_depth(s, vis, every, diag)
+    return vis, s.hidden.astype(np.int64)
 
 
 def _shared_owners(s: Samples, partner: dict[int, int], n: int) -> list[tuple[int, int]]:

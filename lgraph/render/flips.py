@@ -26,7 +26,7 @@ from ..surfaces._base import ON
 from .occlusion import Occlusion
 from .sampling import Samples, merge
 
-__all__ = ["locate_flips", "seed_crossings"]
+__all__ = ["contour_crossings", "locate_flips", "seed_crossings"]
 
 
 @attrs.define
@@ -259,7 +259,7 @@ def _verify(
     return ~hv[:n] & hv[n:] & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b))
 
 
-def _contour_crossings(
+def contour_crossings(
     e: np.ndarray,
     A: np.ndarray,
     bq: np.ndarray,
@@ -298,12 +298,12 @@ def _contour_crossings(
 
 
 def _crossings(s: Samples, c: np.ndarray, q: np.ndarray, vis: Occlusion) -> np.ndarray:
-    """:func:`_contour_crossings` of the exact ellipses of curves ``c`` on
+    """:func:`contour_crossings` of the exact ellipses of curves ``c`` on
     grouped quadrics ``q``, each curve in its view."""
     out = np.empty((len(c), 2))
     for k, rows in s.views.groups(s.view[c]):
         cr, qr = c[rows], q[rows]
-        out[rows] = _contour_crossings(
+        out[rows] = contour_crossings(
             s.ellipses[cr], vis.q_A[qr], vis.q_b[qr], vis.q_d[qr], s.views.projectors[k], vis.centre
         )
     return out
@@ -319,7 +319,7 @@ def _closed_form(
     b: np.ndarray,
 ) -> None:
     """Flips of exact ellipses (``Samples.ellipses``) across the contour of the
-    ellipsoid they lie on, in closed form (:func:`_contour_crossings`); ``a,
+    ellipsoid they lie on, in closed form (:func:`contour_crossings`); ``a,
     b`` (visible and hidden ends of the brackets ``idx``, hidden by quadrics
     ``q``) collapse onto them.  Brackets with no or two crossings keep their
     ends; every result is verified by the caller."""
@@ -366,11 +366,9 @@ def seed_crossings(s: Samples, vis: Occlusion) -> None:
     own_q = np.repeat(q, 2)[inside.ravel()]
     if not len(t):
         return
-    # the chord holding each crossing: samples are sorted by (curve, t)
-    scale = 0.5 / (s.t1 - s.t0)
-    keys = s.cid + (s.t - s.t0[s.cid]) * scale[s.cid]
-    j = np.searchsorted(keys, cid + (t - s.t0[cid]) * scale[cid], side="right")
-    ok = (j > 0) & (j < len(keys))
+    # the chord holding each crossing: samples ``j - 1`` and ``j``
+    j = s.after(cid, t) + 1
+    ok = (j > 0) & (j < len(s.t))
     j, cid, t, own_q = j[ok], cid[ok], t[ok], own_q[ok]
     quiet = (s.cid[j - 1] == cid) & (s.cid[j] == cid) & (s.hidden[j - 1] == s.hidden[j])
     # ... and both ends visible, or both hidden by this ellipsoid (ends hidden

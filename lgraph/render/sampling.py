@@ -221,6 +221,13 @@ class Samples:
                 uv[rows] = np.asarray(u, float).reshape(-1, 2)
         return xyz, uv, None if project is None else self.views.project(xyz, self.view[cid])
 
+    def after(self, cid: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """The sample each point ``(cid[i], t[i])`` comes right after (-1:
+        before the first); the samples are sorted by (curve, t)."""
+        scale = 0.5 / (self.t1 - self.t0)
+        keys = self.cid + (self.t - self.t0[self.cid]) * scale[self.cid]
+        return np.searchsorted(keys, cid + (t - self.t0[cid]) * scale[cid], side="right") - 1
+
     def owners(self, rows: np.ndarray | slice) -> tuple[np.ndarray, np.ndarray]:
         """Owner nodes and ownership codes of samples ``rows``."""
         c = self.cid[rows]

@@ -188,8 +188,9 @@ def _affine_circle_batch(
     to_x: np.ndarray,
 ) -> CurveBatch:
     """Closed curve ``x(t) = to_x @ (center + radius (cos t e1 + sin t e2))``,
-    i.e. the ellipse ``c + p cos t + q sin t``; its evaluation is the
-    surface's ellipse kernel (one call for the contours of all views)."""
+    i.e. the ellipse ``c + p cos t + q sin t`` (said in ``ellipses``: such a
+    curve is never aliased); its evaluation is the surface's ellipse kernel
+    (one call for the contours of all views)."""
     # shared by equal surfaces: the contours of many equal spheres in one call
     kernel = per_value(surface, "ellipse kernel", lambda: _EllipseKernel(surface))
     params = np.concatenate([to_x @ center, radius * (to_x @ e1), radius * (to_x @ e2)])[None]
@@ -205,6 +206,7 @@ def _affine_circle_batch(
         closed=True,
         surface=surface,
         own=CONTOUR,
+        ellipses=params.reshape(1, 3, 3),
         kernel=(kernel, params),
     )
 
