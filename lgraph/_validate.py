@@ -17,41 +17,6 @@ from ._tolerance import MAX_CURVES
 Validator = Callable[[Any, Any, Any], None]
 
 
-def unchecked(cls: type, **values: Any) -> Any:
-    """An instance of the frozen attrs class ``cls`` made from ``values``
-    without its converters and validators, for hot paths whose values are of
-    the right types already (thousands of strokes a render).  Every field
-    must be given: a field added to ``cls`` later fails here, not silently.
-
-    >>> import attrs
-    >>> @attrs.frozen
-    ... class P:
-    ...     x: float = attrs.field(converter=float)
-    >>> unchecked(P, x=1.5).x
-    1.5
-    >>> unchecked(P, y=1)
-    Traceback (most recent call last):
-    ...
-    TypeError: unchecked(P): fields ['x'] expected, got ['y']
-    """
-    names = _FIELDS.get(cls)
-    if names is None:
-        import attrs
-
-        names = _FIELDS[cls] = frozenset(f.name for f in attrs.fields(cls))
-    if values.keys() != names:
-        raise TypeError(
-            f"unchecked({cls.__name__}): fields {sorted(names)} expected, got {sorted(values)}"
-        )
-    obj = object.__new__(cls)
-    for k, v in values.items():
-        object.__setattr__(obj, k, v)
-    return obj
-
-
-_FIELDS: dict[type, frozenset[str]] = {}
-
-
 def _is_real(value: Any) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
 

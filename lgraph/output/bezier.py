@@ -42,8 +42,6 @@ from typing import Any
 import attrs
 import numpy as np
 
-from .._validate import unchecked
-
 __all__ = [
     "CurveRef",
     "fit_pieces",
@@ -100,24 +98,6 @@ class CurveRef:
         if not self.closed:
             return t
         return np.where(t > self.t1, t - (self.t1 - self.t0), t)
-
-
-def made_curve_ref(
-    batch: Any,
-    index: int,
-    transform: Any,
-    projector: Any,
-    t: np.ndarray,
-    t0: float,
-    t1: float,
-    closed: bool,
-) -> CurveRef:
-    """``CurveRef(...)`` for ``t0``, ``t1`` already floats and ``closed`` a
-    bool, without its converters (one a stroke of every render)."""
-    return unchecked(
-        CurveRef, batch=batch, index=index, transform=transform, projector=projector,
-        t=t, t0=t0, t1=t1, closed=closed,
-    )  # fmt: skip
 
 
 def unwrapped(t: np.ndarray, lens: np.ndarray, period: np.ndarray) -> np.ndarray:

@@ -9,8 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._validate import unchecked
-from ..output.bezier import made_curve_ref, unwrapped
+from ..output.bezier import CurveRef, unwrapped
 from ..output.drawing import Stroke
 from ..scene.style import Style
 from .sampling import Samples
@@ -136,37 +135,13 @@ def run_strokes(
             if style is None:
                 style = styles[key] = batch.style or nodes[node].style_for(family)
         # the exact curve of the stroke (lgraph.output.bezier: curves="bezier" output)
-        # (made without the classes' converters: the values are of their types)
-        curve = made_curve_ref(
-            batch, c - first_id, transform, projectors[v], tus[k], t0, t1, closed
-        )
-        out[v].append(
-            made_stroke(
-                xy[k], xyz[k], None if no_uv else uv[k], not dep, family, surface, style, dep, curve
-            )
-        )
+        curve = CurveRef(batch, c - first_id, transform, projectors[v], tus[k], t0, t1, closed)
+        stroke = Stroke(
+            xy[k], xyz[k], None if no_uv else uv[k], not dep, family, surface, style, dep,
+            curve=curve,
+        )  # fmt: skip
+        out[v].append(stroke)
     return out
-
-
-def made_stroke(
-    xy: np.ndarray,
-    xyz: np.ndarray,
-    uv: np.ndarray | None,
-    visible: bool,
-    family: str,
-    surface: Any,
-    style: Style,
-    occlusion: int,
-    curve: Any,
-) -> Stroke:
-    """``Stroke(xy, xyz, uv, visible, family, surface, style, occlusion,
-    curve=curve)`` for arguments its converters leave as they are (float
-    arrays, ``uv`` a float array or None), without calling them: the renderer
-    makes one a stroke, thousands for a large scene."""
-    return unchecked(
-        Stroke, xy=xy, xyz=xyz, uv=uv, visible=visible, family=family, surface=surface,
-        style=style, occlusion=occlusion, halo=None, curve=curve,
-    )  # fmt: skip
 
 
 def _own_surface(surface: Any, node: RenderNode) -> Any:
