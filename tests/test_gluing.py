@@ -317,5 +317,9 @@ def test_roman_surface_contour_lies_on_the_contour():
         for k in range(len(b)):
             t = np.linspace(b.t0[k], b.t1[k], 1000)
             x, uv = b.evaluate(np.full(len(t), k), t)
-            assert np.abs(s.normal(uv[:, 0], uv[:, 1]) @ w).max() < 1e-6
+            # the pieces end on the pinch points, where the normal is undefined
+            x1, x2 = s.derivatives(uv[:, 0], uv[:, 1])
+            regular = np.linalg.norm(np.cross(x1, x2), axis=1) > 1e-9
+            assert regular.sum() >= len(t) - 2
+            assert np.abs(s.normal(uv[regular, 0], uv[regular, 1]) @ w).max() < 1e-6
             assert np.linalg.norm(np.diff(x, axis=0), axis=1).max() < 0.02 * s.size

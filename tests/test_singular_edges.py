@@ -51,10 +51,14 @@ def whitney_normal(u, v):
 
 
 def _contour_residual(drawing, normal, projector):
-    """Largest ``|N . w|`` (unit vectors) over the contour's points, and their number."""
+    """Largest ``|N . w|`` (unit vectors) over the contour's points, and their
+    number; points where the normal vanishes (a pinch point, where the
+    contour ends) have no ``N`` and are left out."""
     uv = np.concatenate([s.uv for s in drawing.strokes if s.family == "contour"])
     n = normal(uv[:, 0], uv[:, 1])
-    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    length = np.linalg.norm(n, axis=1)
+    regular = length > 1e-9 * length.max()
+    n = n[regular] / length[regular, None]
     w = np.asarray(projector.frame[2])
     return float(np.abs(n @ w).max()), len(uv)
 

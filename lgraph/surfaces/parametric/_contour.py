@@ -24,6 +24,7 @@ from ..._tolerance import SINGULAR_NORMAL_RTOL
 from ...geometry.vectors import cross as _cross
 from .._memo import per_surface
 from ._seams import unjump
+from ._singular_points import to_singular_points
 from ._zero_set import CONTOUR_GRID, grid_parameters, zero_set
 
 if TYPE_CHECKING:
@@ -217,6 +218,8 @@ def contour(
     n, p = grid_geometry(surface, grid)
     values = _cosine(n, p, projector, normal_floor(surface))
     curves = zero_set(surface, fun, grid, values=values)
+    # pieces that stop a cell short of a pinch point go on to it
+    curves = to_singular_points(surface, curves, grid, normal_floor(surface))
     return [_contour_batch(surface, projector, curves)] if curves else []
 
 

@@ -26,7 +26,7 @@ from ._seams import join_pieces
 if TYPE_CHECKING:
     from .._domain import Parametrized
 
-__all__ = ["march", "zero_set"]
+__all__ = ["collapsed_ends", "grid_axis", "grid_parameters", "march", "zero_set"]
 
 #: grid nodes per parameter for the contour scan
 CONTOUR_GRID = 193
@@ -40,7 +40,9 @@ EDGE_FTOL = 4 * np.finfo(float).eps
 JUMP_RTOL = 1e-6
 
 
-def _grid_axis(surface: Parametrized, i: int, n: int) -> np.ndarray:
+def grid_axis(surface: Parametrized, i: int, n: int) -> np.ndarray:
+    """The grid's values of ``u_i`` (``n`` of them; periodic parameters wrap,
+    poles and collapsed ends are kept ``1e-7`` of the span away)."""
     d = surface.domain
     lo, hi = d.range(i)
     if d.periodic[i] is True:
@@ -101,7 +103,7 @@ def grid_parameters(
     surface: Parametrized, grid: int = CONTOUR_GRID
 ) -> tuple[np.ndarray, np.ndarray]:
     """``U1, U2`` (``grid x grid``, ``indexing="ij"``): the nodes :func:`zero_set` marches on."""
-    a1, a2 = _grid_axis(surface, 0, grid), _grid_axis(surface, 1, grid)
+    a1, a2 = grid_axis(surface, 0, grid), grid_axis(surface, 1, grid)
     return np.meshgrid(a1, a2, indexing="ij")
 
 
@@ -114,7 +116,7 @@ def zero_set(
     crossings joined into polylines in the parameter plane.  ``values``, if
     given, is ``fun`` on the nodes of :func:`grid_parameters` (computed by
     the caller from what it keeps between calls)."""
-    a1, a2 = _grid_axis(surface, 0, grid), _grid_axis(surface, 1, grid)
+    a1, a2 = grid_axis(surface, 0, grid), grid_axis(surface, 1, grid)
     F = fun(*np.meshgrid(a1, a2, indexing="ij")) if values is None else values
     F = np.where(np.isfinite(F), F, 0.0)
     pos = F >= 0
