@@ -41,7 +41,13 @@ from .sampling import Samples, merge
 if TYPE_CHECKING:
     from .occlusion import Occlusion
 
-__all__ = ["NET_FAMILIES", "near_misses", "net_crossings", "seed_net_crossings"]
+__all__ = [
+    "NET_FAMILIES",
+    "near_misses",
+    "net_crossings",
+    "net_meetings",
+    "seed_net_crossings",
+]
 
 #: the families whose curves form the net of a hiding node asked one by one
 NET_FAMILIES = frozenset({"contour", "boundary"})
@@ -78,14 +84,14 @@ def _net_curves(s: Samples, hiding: set[int], meetings: bool = True) -> np.ndarr
 
 def chord_crossings(
     a0: np.ndarray, a1: np.ndarray, b0: np.ndarray, b1: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Which segments ``a0 a1`` cross segments ``b0 b1`` (row by row), and
-    where along ``a`` (fraction in [0, 1]).
+    where along ``a`` and along ``b`` (fractions in [0, 1]).
 
     >>> a0, a1 = np.array([[0.0, 0.0]]), np.array([[2.0, 0.0]])
-    >>> hit, f = chord_crossings(a0, a1, np.array([[0.5, -1.0]]), np.array([[0.5, 1.0]]))
-    >>> hit.tolist(), f.tolist()
-    ([True], [0.25])
+    >>> hit, f, g = chord_crossings(a0, a1, np.array([[0.5, -1.0]]), np.array([[0.5, 1.0]]))
+    >>> hit.tolist(), f.tolist(), g.tolist()
+    ([True], [0.25], [0.5])
     """
     r, q = a1 - a0, b1 - b0
     den = r[:, 0] * q[:, 1] - r[:, 1] * q[:, 0]
@@ -94,15 +100,15 @@ def chord_crossings(
         fa = (w[:, 0] * q[:, 1] - w[:, 1] * q[:, 0]) / den
         fb = (w[:, 0] * r[:, 1] - w[:, 1] * r[:, 0]) / den
     hit = (den != 0) & (fa >= 0) & (fa <= 1) & (fb >= 0) & (fb <= 1)
-    return hit, np.where(hit, fa, np.nan)
+    return hit, np.where(hit, fa, np.nan), np.where(hit, fb, np.nan)
 
 
 def _view_crossings(
     xy: np.ndarray, qi: np.ndarray, ni: np.ndarray, cid: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Crossings of query chords ``qi`` with net chords ``ni`` (chord ``i``
     runs from sample ``i`` to ``i + 1``) of one view: the query chord of each
-    crossing and its fraction along it."""
+    crossing and its fraction along it, the net chord and its fraction."""
     q0, q1, n0, n1 = (np.take(xy, i, axis=0) for i in (qi, qi + 1, ni, ni + 1))
     pq, pn = box_pairs(
         np.minimum(q0, q1), np.maximum(q0, q1), np.minimum(n0, n1), np.maximum(n0, n1)
@@ -110,8 +116,8 @@ def _view_crossings(
     a, b = qi[pq], ni[pn]
     keep = cid[a] != cid[b]  # a curve does not cross itself into hiding
     a, b = a[keep], b[keep]
-    hit, frac = chord_crossings(*(np.take(xy, i, axis=0) for i in (a, a + 1, b, b + 1)))
-    return a[hit], frac[hit]
+    hit, fa, fb = chord_crossings(*(np.take(xy, i, axis=0) for i in (a, a + 1, b, b + 1)))
+    return a[hit], fa[hit], b[hit], fb[hit]
 
 
 def _conic_roots(
@@ -219,30 +225,38 @@ def net_crossings(
     surface's outline (its own contour crossings are seeded by
     :func:`~lgraph.render.flips.seed_crossings` or followed by the
     own-surface tests)."""
-    none = np.empty(0, np.int64), np.empty(0)
+    q, f, _, _ = net_meetings(s, vis, query)
+    return q, f
+
+
+def net_meetings(
+    s: Samples, vis: Occlusion, query: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`net_crossings` with what each chord crosses: the query chord,
+    its fraction, and the net chord crossed and its fraction (-1 and NaN
+    for an ellipsoid's outline conic)."""
+    empty = np.empty(0, np.int64), np.empty(0)
     net = _net_curves(s, set(vis.twins))  # the surfaces asked one by one
     if not net.any() and not vis.nq:
-        return none
+        return empty + empty
     chord = np.flatnonzero(s.cid[1:] == s.cid[:-1])
     chord = chord[(s.t[chord + 1] - s.t[chord]) > 0]
     query = chord if query is None else query
     qview = s.view[s.cid[query]]
     net_chord = chord[net[s.cid[chord]]]
     net_view = s.view[s.cid[net_chord]]
-    found_q, found_f = [], []
+    found: list[tuple[np.ndarray, ...]] = []
     for k in np.unique(qview).tolist():
         q_k = query[qview == k]
         if len(net_chord):
-            q, f = _view_crossings(s.xy, q_k, net_chord[net_view == k], s.cid)
-            found_q.append(q)
-            found_f.append(f)
+            found.append(_view_crossings(s.xy, q_k, net_chord[net_view == k], s.cid))
         if vis.nq:
-            q, f = _outline_crossings(s, vis, k, q_k)
-            found_q += q
-            found_f += f
-    if not found_q:
-        return none
-    return np.concatenate(found_q), np.concatenate(found_f)
+            for q, f in zip(*_outline_crossings(s, vis, k, q_k)):
+                found.append((q, f, np.full(len(q), -1), np.full(len(q), np.nan)))
+    if not found:
+        return empty + empty
+    q, f, b, g = (np.concatenate(parts) for parts in zip(*found))
+    return q, f, b, g
 
 
 def seed_net_crossings(
@@ -432,5 +446,5 @@ def _approach(
     f = np.stack([fa[0], fa[1], np.zeros(len(r)), np.ones(len(r))])
     best = np.argmin(d, axis=0)
     cols = np.arange(len(r))
-    hit, _ = chord_crossings(a0, a1, b0, b1)
+    hit, _, _ = chord_crossings(a0, a1, b0, b1)
     return np.where(hit, 0.0, d[best, cols]), f[best, cols]

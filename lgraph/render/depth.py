@@ -26,8 +26,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _tolerance as tol
+from .brackets import net_guesses, sections, sub_points
 from .crossings import net_crossings
-from .flips import sections, sub_points
 from .sampling import merge
 
 if TYPE_CHECKING:
@@ -44,6 +44,12 @@ _MAX_PASSES = 1
 #: changes of depth are located to this fraction of the curve's parameter
 #: span, as the flips of visibility
 DEPTH_RTOL = tol.BISECTION_RTOL
+#: a change of depth on the one crossing of its chord with the net is taken
+#: there (both strokes end on it) when the counts this far (a fraction of the
+#: curve's span) on either side agree with the bracket's ends
+GUIDE_RTOL = 1e-7
+#: a bracket this narrow (a fraction of the curve's span) holds a located change
+LOCATED_RTOL = 4 * GUIDE_RTOL
 #: a run of one depth whose image is smaller than this fraction of the figure
 #: takes its hidden neighbour's depth: within a few ``SELF_HIT_RTOL`` of a
 #: contour the count is ambiguous (the fold's own root is that close to the
@@ -63,6 +69,14 @@ def _count(s: Samples, vis: Occlusion, rows: np.ndarray) -> np.ndarray:
     return np.maximum(n, 1)
 
 
+def _cosines(s: Samples, vis: Occlusion, rows: np.ndarray) -> np.ndarray:
+    """``N . ray`` of samples ``rows`` on their own surfaces (NaN: unknown)."""
+    owner, _ = s.owners(rows)
+    return vis.own_cosines(
+        np.take(s.xyz, rows, axis=0), owner, s.view[s.cid[rows]], np.take(s.uv, rows, axis=0)
+    )
+
+
 def _candidates(s: Samples, vis: Occlusion, chord: np.ndarray, every: bool) -> np.ndarray:
     """Which chords ``chord`` (between two hidden samples) may hold a change
     of depth: those crossed by the net (:func:`~lgraph.render.crossings.net_crossings`)
@@ -74,10 +88,7 @@ def _candidates(s: Samples, vis: Occlusion, chord: np.ndarray, every: bool) -> n
     q, _ = net_crossings(s, vis, chord)
     out = np.isin(chord, q)
     ends = np.concatenate([chord, chord + 1])
-    owner, _ = s.owners(ends)
-    side = vis.own_sides(
-        np.take(s.xyz, ends, axis=0), owner, s.view[s.cid[ends]], np.take(s.uv, ends, axis=0)
-    )
+    side = np.nan_to_num(np.sign(_cosines(s, vis, ends)))
     a, b = side[: len(chord)], side[len(chord) :]
     out |= np.any(a != b, axis=1)
     return out
@@ -130,7 +141,7 @@ def occlusion_depth(
         )
         cid = s.cid[a]
         span = np.abs(s.t1[cid] - s.t0[cid])
-        a = a[s.t[a + 1] - s.t[a] > DEPTH_RTOL * span]
+        a = a[s.t[a + 1] - s.t[a] > LOCATED_RTOL * span]
         if not len(a):
             break
         depth = _locate(s, vis, a, depth)
@@ -140,7 +151,7 @@ def occlusion_depth(
         s.hidden[:-1] & s.hidden[1:] & (s.cid[:-1] == s.cid[1:]) & (depth[:-1] != depth[1:])
     )
     cid = s.cid[a]
-    a = a[s.t[a + 1] - s.t[a] > DEPTH_RTOL * np.abs(s.t1[cid] - s.t0[cid])]
+    a = a[s.t[a + 1] - s.t[a] > LOCATED_RTOL * np.abs(s.t1[cid] - s.t0[cid])]
     if len(a):
         b = a + 1
         xyz, uv, xy = (np.take(x, b, axis=0) for x in (s.xyz, s.uv, s.xy))
@@ -200,10 +211,14 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
     span = np.abs(s.t1[cid] - s.t0[cid])
     owner, kind = s.owners(a)
     view = s.view[cid]
-    # K-section on the count, K chosen as for the flips
+    # on the net's crossing where it is one and the counts beside it agree
+    guided, t_lo, t_hi = _guided(s, vis, a, dlo, dhi)
+    # both strokes end on the crossing itself: they meet, with no gap
+    lo[guided] = hi[guided] = 0.5 * (t_lo[guided] + t_hi[guided])
+    # K-section on the count for the rest, K chosen as for the flips
     K = sections(view, np.ones(len(a), dtype=bool), s.views.k, vis)
     for _ in range(tol.BISECTION_MAX_STEPS):
-        go = np.flatnonzero(hi - lo > DEPTH_RTOL * span)
+        go = np.flatnonzero((hi - lo > DEPTH_RTOL * span) & ~guided)
         if not len(go):
             break
         rep, tm, first_differing = sub_points(lo, hi, go, K[go])
@@ -223,3 +238,31 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
     out[~new] = depth
     out[new] = ends
     return out
+
+
+def _guided(
+    s: Samples, vis: Occlusion, a: np.ndarray, dlo: np.ndarray, dhi: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Brackets ``a, a + 1`` (depths ``dlo``, ``dhi``) whose chord crosses
+    the sampled net once: where the curve passes behind that net curve, the
+    crossing refined on both exact curves
+    (:func:`~lgraph.render.brackets.net_guesses`), is where its depth
+    changes.  Counted ``GUIDE_RTOL`` of the span before and after it (two
+    rays a bracket instead of a bisection's dozens); returns which brackets
+    agree and their new ends.  (Where a curve passes its own contour the
+    count changes beside, not at, the zero of ``N . ray``: tried on
+    Enneper's surface, none agreed; those stay with the bisection.)"""
+    m = len(a)
+    ok, lo, hi = np.zeros(m, dtype=bool), np.full(m, np.nan), np.full(m, np.nan)
+    row, t, w = net_guesses(s, vis, a, GUIDE_RTOL)
+    if not len(row):
+        return ok, lo, hi
+    q = a[row]
+    cc, first = np.tile(s.cid[q], 2), np.tile(q, 2)
+    xyz, _, xy = s.evaluate(cc, np.concatenate([t - w, t + w]), True)
+    owner, kind = s.owners(first)
+    before, after = np.split(np.maximum(vis.sheets(xyz, xy, owner, kind, view=s.view[cc]), 1), 2)
+    good = (before == dlo[row]) & (after == dhi[row])
+    ok[row[good]] = True
+    lo[row[good]], hi[row[good]] = t[good] - w[good], t[good] + w[good]
+    return ok, lo, hi

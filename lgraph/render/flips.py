@@ -23,10 +23,15 @@ import numpy as np
 from .. import _tolerance as tol
 from ..scene.projectors import CentralProjector, Projector
 from ..surfaces._base import ON
+from .brackets import net_guesses, sections, sub_points
 from .occlusion import Occlusion
 from .sampling import Samples, merge
 
 __all__ = ["contour_crossings", "locate_flips", "seed_crossings"]
+
+#: a flip on the net's one crossing of its chord: first bracketed this far
+#: (of the curve's span) on either side of it (:func:`_guided`)
+GUIDE_RTOL = 1e-7
 
 
 @attrs.define
@@ -399,38 +404,24 @@ def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
     return np.where((r > 0) & (r < 1), r, 0.5)
 
 
-def sections(view: np.ndarray, open_: np.ndarray, k_views: int, vis: Occlusion) -> np.ndarray:
-    """``K`` for K-section, per bracket (brackets in views ``view``; those
-    ``open_`` counted): the fixed cost of a step against its sub-points'
-    tests, the least cost per bit gained (deterministic: no timing); per
-    view, so that views rendered together split a bracket as a view alone
-    would."""
-    n_open = np.bincount(view[open_], minlength=k_views)
-    ks = 2 ** np.arange(1, int(np.log2(tol.SECTIONS)) + 1)
-    per_bit = (vis.cost_per_call + n_open[:, None] * (ks - 1) * vis.cost_per_point) / np.log2(ks)
-    return ks[np.argmin(per_bit, axis=1)][view]
-
-
-def sub_points(lo: np.ndarray, hi: np.ndarray, idx: np.ndarray, k: np.ndarray) -> tuple:
-    """The ``k - 1`` sub-points splitting brackets ``lo[idx] .. hi[idx]`` into
-    ``k`` parts: ``(rep, t, first_differing)`` with ``rep`` the bracket of
-    every sub-point and ``first_differing(differs)`` -- given which
-    sub-points differ from their bracket's ``lo`` -- the rows (into ``t``) of
-    the new ``lo`` and ``hi`` of every bracket (-1: unchanged), keeping the
-    first sub-bracket whose ends differ (none: the last part)."""
-    m = k - 1
-    rep = np.repeat(idx, m)
-    start = np.cumsum(m) - m
-    j = np.arange(len(rep)) - np.repeat(start, m) + 1  # 1 .. m in each bracket
-    t = lo[rep] + (hi[rep] - lo[rep]) * (j / np.repeat(k, m))
-
-    def first_differing(differs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        first = np.minimum.reduceat(np.where(differs, j - 1, np.repeat(m, m)), start)
-        new_lo = np.where(first > 0, start + first - 1, -1)
-        new_hi = np.where(first < m, start + first, -1)
-        return new_lo, new_hi
-
-    return rep, t, first_differing
+def _guided(s: Samples, fl: _Flips, vis: Occlusion) -> None:
+    """Brackets still a whole chord that the sampled net crosses once shrink
+    to ``GUIDE_RTOL`` of the span about the crossing on the exact curves
+    (:func:`~lgraph.render.brackets.net_guesses`) when tests there agree:
+    two ray tests for the K-section's first half."""
+    whole = np.flatnonzero(fl.open() & (fl.lo == s.t[fl.f]) & (fl.hi == s.t[fl.f + 1]))
+    if not len(whole):
+        return
+    row, t, w = net_guesses(s, vis, fl.f[whole], GUIDE_RTOL)
+    if not len(row):
+        return
+    i = whole[row]
+    c = np.tile(fl.cid[i], 2)
+    xyz, _, xy = s.evaluate(c, np.concatenate([t - w, t + w]), True)
+    h = vis.hidden(xyz, xy, np.tile(fl.owner[i], 2), np.tile(fl.kind[i], 2), view=s.view[c])
+    before, after = np.split(h, 2)
+    good = (before == fl.hlo[i]) & (after != fl.hlo[i])
+    fl.lo[i[good]], fl.hi[i[good]] = t[good] - w[good], t[good] + w[good]
 
 
 def _k_section(s: Samples, fl: _Flips, vis: Occlusion) -> None:
@@ -467,6 +458,7 @@ def locate_flips(s: Samples, vis: Occlusion) -> None:
         return
     _margin_search(s, fl, vis)
     _own_margin_search(s, fl, vis)
+    _guided(s, fl, vis)
     _k_section(s, fl, vis)
     # both ends of each bracket, in order, right after the flip's first sample
     t = np.column_stack([fl.lo, fl.hi]).ravel()

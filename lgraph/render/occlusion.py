@@ -365,22 +365,23 @@ class Occlusion:
             out[: len(m), idx] = m
         return out
 
-    def own_sides(
+    def own_cosines(
         self,
         xyz: np.ndarray,
         owner: np.ndarray,
         view: np.ndarray | None = None,
         uv: np.ndarray | None = None,
     ) -> np.ndarray:
-        """On which side of their own surfaces' contours points lie: the sign
-        of ``N . ray`` (``(n, 2)``: the owner's surface, and for an
-        intersection curve on a grouped ellipsoid its second one; 0 where
-        unknown).  For grouped ellipsoids ``N`` is ``grad F``; for the other
-        surfaces the normal at the points' parameters ``uv`` (their own
-        surface's).  Where it changes between two samples, the curve has
-        crossed its own contour, where its image only touches the image of
-        the contour (no 2-D crossing)."""
-        out = np.zeros((len(xyz), 2), dtype=np.int8)
+        """``N . ray`` at points on their own surfaces (``(n, 2)``: the
+        owner's surface, and for an intersection curve on a grouped
+        ellipsoid its second one; NaN where unknown), continuous along a
+        curve and zero where it crosses its own contour.  For grouped
+        ellipsoids ``N`` is ``grad F``; for the other surfaces the unit
+        normal at the points' parameters ``uv`` (their own surface's).
+        Where its sign changes between two samples, the curve has crossed its
+        own contour, where its image only touches the image of the contour
+        (no 2-D crossing)."""
+        out = np.full((len(xyz), 2), np.nan)
         if not len(xyz):
             return out
         dirs, _ = self.views.rays(xyz, view)
@@ -394,7 +395,7 @@ class Occlusion:
             x = xyz[rows] - self.centre
             A, b, _, _ = self._coefficients(q[rows])
             g = 2 * (np.einsum("nij,nj->ni", A, x) if A.ndim == 3 else x @ A) + b
-            out[rows, col] = np.sign(np.einsum("ni,ni->n", g, dirs[rows]))
+            out[rows, col] = np.einsum("ni,ni->n", g, dirs[rows])
         if uv is None:
             return out
         first = self._on_first[owner + 1]
@@ -404,8 +405,7 @@ class Occlusion:
                 continue
             with np.errstate(all="ignore"):
                 n = surf.normal(uv[rows, 0], uv[rows, 1])
-                side = np.sign(np.einsum("ni,ni->n", n, inv.apply_vector(dirs[rows])))
-            out[rows, 0] = np.nan_to_num(side).astype(np.int8)
+                out[rows, 0] = np.einsum("ni,ni->n", n, inv.apply_vector(dirs[rows]))
         return out
 
     def _on(self, owner: np.ndarray, nodes: np.ndarray) -> np.ndarray:

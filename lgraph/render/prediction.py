@@ -28,7 +28,7 @@ import numpy as np
 from .. import _tolerance as tol
 from ..surfaces._base import Surface
 from ..surfaces.parametric._boxes import set_meter
-from .flips import sections
+from .brackets import sections
 from .sampling import Samples, _at, _culprit, _predicted_deviation, check_points
 
 __all__ = ["RayBudgetError", "RayMeter", "Work", "later_work", "predict_points", "probe_ray_tests"]
