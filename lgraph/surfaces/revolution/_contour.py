@@ -135,7 +135,7 @@ def contour(surface: SurfaceOfRevolution, projector: Projector) -> list[CurveBat
     central, wa, r0, psi0 = view_terms(surface, projector)
     scale = np.hypot(r0, wa)
     if r0 <= 1e-12 * scale:  # view along the axis: whole parallels
-        from ...families import parameter_line_batches
+        from ...families._lines import parameter_line_batches
 
         roots = surface._roots_in_t(lambda x: _c_terms(surface, x, central, wa)[0])
         roots = roots[~surface._at_pole(roots)]
