@@ -14,13 +14,11 @@ import functools
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import attrs
-import numpy as np
 
 from .._own import CONTOUR
 from .._validate import count, finite_positive, one_of
 from ..curves import CurveBatch
-
-SPACINGS = ("complete", "even")
+from ._lines import SPACINGS, parameter_line_batches  # noqa: F401 - re-exported for plugins
 
 if TYPE_CHECKING:
     from ..scene.projectors import Projector
@@ -85,77 +83,6 @@ def _check_batches_args(owner: str, surface: Any, projector: Any) -> None:
             f"{owner}.batches: projector must be a Projector or None, "
             f"got {type(projector).__name__}"
         )
-
-
-def _glued_lines(d: Any, i: int, c: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Lines ``u_i = c`` (running along ``u_j``) as ``(c, turns, closed)``: a
-    line crossing a twisted seam of ``u_j`` comes back as ``u_i = a + b - c``
-    and closes after two turns (one if ``c`` is the middle); a line whose
-    continuation is another line of ``c`` is left out (it is drawn as part
-    of the first)."""
-    j = 1 - i
-    if not d.twisted[j]:
-        return c, np.ones(len(c)), np.full(len(c), d.glued[j])
-    span = d.span(i)
-    m = d.mirror(i, c)
-    if d.glued[i]:
-        m = d.range(i)[0] + np.mod(m - d.range(i)[0], span)
-
-    def same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        q = (a - b) / span
-        if d.glued[i]:
-            q = q - np.round(q)
-        return np.abs(q) <= 1e-12
-
-    self_mirror = same(c, m)
-    keep = np.ones(len(c), bool)
-    for k in range(len(c)):
-        if keep[k] and not self_mirror[k]:
-            keep[k + 1 :] &= ~same(c[k + 1 :], m[k])
-    return c[keep], np.where(self_mirror[keep], 1.0, 2.0), np.ones(int(keep.sum()), bool)
-
-
-def parameter_line_batches(
-    surface: Surface,
-    values1: np.ndarray,
-    values2: np.ndarray,
-    family1: str = "u1",
-    family2: str = "u2",
-) -> list[CurveBatch]:
-    """One batch with the lines ``u1 = values1[k]`` (family ``family1``) and
-    ``u2 = values2[k]`` (``family2``); empty if there are none.  A line that
-    crosses a twisted seam continues, mirrored, as one stroke
-    (:class:`~lgraph.surfaces._domain.Domain`)."""
-    d = surface.domain
-    c1, turns1, closed1 = _glued_lines(d, 0, np.asarray(values1, float).ravel())
-    c2, turns2, closed2 = _glued_lines(d, 1, np.asarray(values2, float).ravel())
-    n1, n2 = len(c1), len(c2)
-    if not n1 + n2:
-        return []
-    const = np.concatenate([c1, c2])
-    # lines along a twisted parameter start half-way (their ends are not on the seam)
-    start = [d.range(j)[0] + 0.5 * d.span(j) * d.twisted[j] for j in (0, 1)]
-
-    def uv(idx: np.ndarray, t: np.ndarray) -> np.ndarray:
-        first = idx < n1  # a line u1 = const, running along u2
-        c = const[idx]
-        out = np.empty((len(c), 2))
-        out[:, 0] = np.where(first, c, t)
-        out[:, 1] = np.where(first, t, c)
-        return d.wrap(out, clip=False) if d.twisted[0] or d.twisted[1] else out
-
-    names = (family1,) * n1 + (family2,) * n2
-    return [
-        CurveBatch.from_uv(
-            surface,
-            family1 if n1 else family2,
-            np.concatenate([np.full(n1, start[1]), np.full(n2, start[0])]),
-            np.concatenate([start[1] + turns1 * d.span(1), start[0] + turns2 * d.span(0)]),
-            uv,
-            closed=np.concatenate([closed1, closed2]),
-            curve_family=None if family1 == family2 else names,
-        )
-    ]
 
 
 @attrs.frozen

@@ -12,7 +12,8 @@ from .._validate import count, one_of
 from ..curvature import asymptotic_field
 from ..curves import CurveBatch
 from ..surfaces._base import Surface
-from . import SPACINGS, Family, register_family
+from . import Family, register_family
+from ._lines import SPACINGS
 
 if TYPE_CHECKING:
     from ..scene.projectors import Projector

@@ -30,7 +30,7 @@ from .._budget import check_field_lines
 from .._tolerance import FIELD_DUPLICATE_RTOL, PARAMETER_LINES_RTOL
 from ..curvature import _frame, asymptotic_field, principal_field
 from ..curves import CurveBatch
-from . import SPACINGS, parameter_line_batches
+from ._lines import SPACINGS, parameter_line_batches
 from ._seeds import _center_seed, _crossing, _grid, _spread, _stable, cell_centres
 from .fieldlines import FieldLines, trace
 

@@ -33,7 +33,8 @@ import numpy as np
 
 from .._tolerance import MAX_LEVEL_GRID
 from .._validate import count
-from . import Family, parameter_line_batches, register_family
+from . import Family, register_family
+from ._lines import parameter_line_batches
 
 if TYPE_CHECKING:
     from ..curves import CurveBatch

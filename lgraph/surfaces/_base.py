@@ -314,7 +314,7 @@ class Surface:
         curves of its parametrization inside the domain (cuspidal edges; see
         :mod:`!lgraph.surfaces.parametric._singular_edges`).  Surfaces made of several
         pieces override this."""
-        from ..families import parameter_line_batches
+        from ..families._lines import parameter_line_batches
 
         d = self.domain
         edges = parameter_line_batches(self, d.ends(0), d.ends(1), "boundary", "boundary")
@@ -328,7 +328,7 @@ class Surface:
         """``n1`` lines ``u1 = const`` (family ``"u1"``) and ``n2`` lines
         ``u2 = const`` (``"u2"``), spread by :meth:`Domain.lines`.  Surfaces made
         of several pieces override this."""
-        from ..families import parameter_line_batches
+        from ..families._lines import parameter_line_batches
 
         d = self.domain
         return parameter_line_batches(self, d.lines(0, n1), d.lines(1, n2))

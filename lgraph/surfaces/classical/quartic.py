@@ -23,7 +23,7 @@ import attrs
 import numpy as np
 
 from ..._tolerance import SELF_HIT_RTOL
-from ...families import parameter_line_batches
+from ...families._lines import parameter_line_batches
 from .._base import CONTOUR, ON, Domain, Surface
 from ..parametric import _TWO_PI, _positive, _stack, _uv
 from ._polyroots import roots_in

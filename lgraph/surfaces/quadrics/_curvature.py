@@ -174,7 +174,7 @@ def ellipsoid_lines(surface: Any, n1: int, n2: int) -> list[CurveBatch]:
     parallels and meridians, the sphere its parameter lines."""
     order, p, q, r = ellipsoid_frame(surface.axes)
     if r == p:
-        from ...families import parameter_line_batches
+        from ...families._lines import parameter_line_batches
 
         d = surface.domain
         return parameter_line_batches(surface, d.lines(0, n1), d.lines(1, n2), "c1", "c2")

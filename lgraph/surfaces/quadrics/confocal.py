@@ -50,7 +50,8 @@ import numpy as np
 
 from ..._validate import as_number, finite_positive, finite_real
 from ...curves import Curve, CurveBatch
-from ...families import Family, parameter_line_batches
+from ...families import Family
+from ...families._lines import parameter_line_batches
 from .._base import Domain, Surface
 from .._patch import clip_intervals
 from ._unbounded import _PatchQuadric

@@ -319,7 +319,7 @@ class SurfaceOfRevolution(Surface):
     # -- what it draws ------------------------------------------------------------
     def lines_of_curvature(self, n1: int, n2: int) -> list[CurveBatch]:
         """``n1`` parallels and ``n2`` meridians: the lines of curvature, exactly."""
-        from ...families import parameter_line_batches
+        from ...families._lines import parameter_line_batches
 
         d = self.domain
         return parameter_line_batches(self, d.lines(0, n1), d.lines(1, n2))
@@ -328,7 +328,7 @@ class SurfaceOfRevolution(Surface):
         """The parallels where ``K = 0``: where the tangent plane is perpendicular
         to the axis (``z' = 0``) or the meridian has an inflection
         (``rho' z'' - z' rho'' = 0``); roots in ``t`` refined to machine precision."""
-        from ...families import parameter_line_batches
+        from ...families._lines import parameter_line_batches
 
         def zprime(t: np.ndarray) -> np.ndarray:
             return self.drz(t)[1]
@@ -345,7 +345,7 @@ class SurfaceOfRevolution(Surface):
     def level_lines(self, direction: Any, values: Any) -> list[CurveBatch] | None:
         """Sections by planes ``x . direction = value``: parallels when the
         direction is the axis (roots of ``z(t) = +-value``), else None."""
-        from ...families import parameter_line_batches
+        from ...families._lines import parameter_line_batches
 
         d = np.asarray(direction, float)
         d = d / np.linalg.norm(d)

@@ -29,16 +29,14 @@ from .._patch import clip_intervals
 
 if TYPE_CHECKING:
     from ...scene.projectors import Projector
-    from . import SurfaceOfRevolution
+    from ._protocol import Revolved
 
 __all__ = ["contour", "view_terms", "contour_residual"]
 
 _CLOSED, _FOLD_LO, _FOLD_HI, _PLUS, _MINUS = range(5)
 
 
-def view_terms(
-    surface: SurfaceOfRevolution, projector: Projector
-) -> tuple[bool, float, float, float]:
+def view_terms(surface: Revolved, projector: Projector) -> tuple[bool, float, float, float]:
     """``(central, w_a, R0, psi0)``: the view vector (parallel) or the eye
     (central) in the surface's frame, as axial part and polar form."""
     from ...scene.projectors import CentralProjector
@@ -51,7 +49,7 @@ def view_terms(
 
 
 def _c_terms(
-    surface: SurfaceOfRevolution, t: np.ndarray, central: bool, wa: float
+    surface: Revolved, t: np.ndarray, central: bool, wa: float
 ) -> tuple[np.ndarray, np.ndarray]:
     """``(C(t), z'(t))``."""
     dr, dz = surface.drz(t)
@@ -61,9 +59,7 @@ def _c_terms(
     return dr * wa, dz
 
 
-def contour_residual(
-    surface: SurfaceOfRevolution, projector: Projector, uv: np.ndarray
-) -> np.ndarray:
+def contour_residual(surface: Revolved, projector: Projector, uv: np.ndarray) -> np.ndarray:
     """``N . w / |w|`` at parameters ``uv (n, 2)`` from the closed-form terms
     (zero on the contour; for tests and diagnostics)."""
     central, wa, r0, psi0 = view_terms(surface, projector)
@@ -79,9 +75,7 @@ def contour_residual(
     return num / (np.hypot(dr, dz) * wn)
 
 
-def _curves(
-    surface: SurfaceOfRevolution, d_of: Any, dd_of: Any
-) -> list[tuple[float, float, int, bool]]:
+def _curves(surface: Revolved, d_of: Any, dd_of: Any) -> list[tuple[float, float, int, bool]]:
     """``(ta, tb, kind, closed)`` of every contour curve (``d_of``: ``D(t)``,
     ``dd_of``: ``(D, D')``; the folds by safeguarded Newton steps)."""
     from ._fast import newton
@@ -130,12 +124,12 @@ def _curves(
     return out
 
 
-def contour(surface: SurfaceOfRevolution, projector: Projector) -> list[CurveBatch]:
+def contour(surface: Revolved, projector: Projector) -> list[CurveBatch]:
     """The contour curves of ``surface`` for ``projector`` (local frame), one batch."""
     central, wa, r0, psi0 = view_terms(surface, projector)
     scale = np.hypot(r0, wa)
     if r0 <= 1e-12 * scale:  # view along the axis: whole parallels
-        from ...families import parameter_line_batches
+        from ...families._lines import parameter_line_batches
 
         roots = surface._roots_in_t(lambda x: _c_terms(surface, x, central, wa)[0])
         roots = roots[~surface._at_pole(roots)]

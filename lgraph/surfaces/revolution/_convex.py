@@ -28,7 +28,7 @@ import numpy as np
 from ..._own import CONTOUR, OFF
 
 if TYPE_CHECKING:
-    from . import SurfaceOfRevolution
+    from ._protocol import Revolved
 
 __all__ = ["convex_sign", "margin", "t_of_points"]
 
@@ -36,7 +36,7 @@ __all__ = ["convex_sign", "margin", "t_of_points"]
 NEWTON_STEPS = 8
 
 
-def convex_sign(surface: SurfaceOfRevolution) -> int:
+def convex_sign(surface: Revolved) -> int:
     """``sigma = sign z'`` when the surface is the whole boundary of a convex
     solid certified by its profile (see the module docstring), else 0."""
     g = surface._grid
@@ -58,7 +58,7 @@ def convex_sign(surface: SurfaceOfRevolution) -> int:
     return sign
 
 
-def _meridian(surface: SurfaceOfRevolution, o: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _meridian(surface: Revolved, o: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Height ``h`` and distance ``r`` from the axis of points ``o``."""
     a = surface.frame[2]
     h = o @ a
@@ -66,7 +66,7 @@ def _meridian(surface: SurfaceOfRevolution, o: np.ndarray) -> tuple[np.ndarray, 
     return h, np.sqrt(np.einsum("ij,ij->i", radial, radial))
 
 
-def _t_guess(surface: SurfaceOfRevolution, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _t_guess(surface: Revolved, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Linear interpolation of ``t`` in the height grid (monotone ``z``), and
     the grid cell (index into the grid's cells) each height falls in."""
     g = surface._grid
@@ -82,7 +82,7 @@ def _t_guess(surface: SurfaceOfRevolution, h: np.ndarray) -> tuple[np.ndarray, n
 
 
 def meridian_coordinates(
-    surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray | None = None
+    surface: Revolved, o: np.ndarray, v: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Height ``h = o . a`` and distance ``r`` from the axis of points ``o``,
     and (given ``v``) ``r^ . v`` with ``r^`` the radial unit vector (any unit
@@ -99,7 +99,7 @@ def meridian_coordinates(
 
 
 def t_of_points(
-    surface: SurfaceOfRevolution, h: np.ndarray, r: np.ndarray, x: np.ndarray | None = None
+    surface: Revolved, h: np.ndarray, r: np.ndarray, x: np.ndarray | None = None
 ) -> np.ndarray:
     """The parameter ``t`` of points with meridian coordinates ``(r, h)`` on a
     profile with monotone ``z``: the closest profile point, by Newton's method
@@ -127,7 +127,7 @@ def t_of_points(
     return x
 
 
-def _normal_rate(surface: SurfaceOfRevolution) -> np.ndarray:
+def _normal_rate(surface: Revolved) -> np.ndarray:
     """Per grid cell, a bound on how much ``N . v`` (unit ``v``) can change
     between two parameters in the cell: the largest turning rate of the
     normal at its nodes, ``|rho' z'' - z' rho''| / |P'|^2``, times the cell's
@@ -142,7 +142,7 @@ def _normal_rate(surface: SurfaceOfRevolution) -> np.ndarray:
     return g["normal_rate"]
 
 
-def _eye_inside(surface: SurfaceOfRevolution, ends: np.ndarray) -> np.ndarray:
+def _eye_inside(surface: Revolved, ends: np.ndarray) -> np.ndarray:
     """Which points ``ends`` lie inside the convex solid (bisection for the
     radius at their height; only points inside the bounding cylinder)."""
     g = surface._grid
@@ -172,7 +172,7 @@ def _eye_inside(surface: SurfaceOfRevolution, ends: np.ndarray) -> np.ndarray:
 
 
 def margin(
-    surface: SurfaceOfRevolution,
+    surface: Revolved,
     origins: np.ndarray,
     directions: np.ndarray,
     smax: np.ndarray,

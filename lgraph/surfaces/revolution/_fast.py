@@ -39,12 +39,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from . import SurfaceOfRevolution
+    from ._protocol import Revolved
 
 __all__ = ["cusp_function", "far_margin", "monotone_tables", "newton", "own_sign", "scan"]
 
 
-def monotone_tables(surface: SurfaceOfRevolution, cellpad: np.ndarray) -> dict | None:
+def monotone_tables(surface: Revolved, cellpad: np.ndarray) -> dict | None:
     """Node arrays in order of increasing height, and a sparse table of the
     cells' radius bounds (``max rho`` at the nodes plus ``cellpad``, the
     bulge between them); None when ``z`` is not strictly monotone on the grid
@@ -210,7 +210,7 @@ def _values(tab: dict, ray: tuple, run: dict, ftol: float) -> dict:
 
 
 def scan(
-    surface: SurfaceOfRevolution,
+    surface: Revolved,
     tab: dict,
     ray: tuple,
     mine: np.ndarray,
@@ -270,7 +270,7 @@ def scan(
 
 
 def far_margin(
-    surface: SurfaceOfRevolution,
+    surface: Revolved,
     tab: dict,
     ray: tuple,
     s0: np.ndarray,
@@ -324,7 +324,7 @@ def far_margin(
 
 
 def own_sign(
-    surface: SurfaceOfRevolution,
+    surface: Revolved,
     tab: dict,
     ray: tuple,
     contour: np.ndarray,
@@ -348,9 +348,7 @@ def own_sign(
     return s
 
 
-def cusp_function(
-    surface: SurfaceOfRevolution, ray: tuple, p: np.ndarray, t: np.ndarray
-) -> np.ndarray:
+def cusp_function(surface: Revolved, ray: tuple, p: np.ndarray, t: np.ndarray) -> np.ndarray:
     """``F''(t) / size^2`` of rays ``p`` at their points' parameters ``t``."""
     c, k2, _, hs = ray[:4]
     rr, zz = surface.rz(t)
@@ -361,7 +359,7 @@ def cusp_function(
     return fpp / surface.size**2
 
 
-def _ray_function(surface: SurfaceOfRevolution, ray: tuple, p: np.ndarray, x: np.ndarray) -> tuple:
+def _ray_function(surface: Revolved, ray: tuple, p: np.ndarray, x: np.ndarray) -> tuple:
     """``F`` and ``F'`` of rays ``p`` at parameters ``x``."""
     c, k2, d2, hs = ray[:4]
     rr, zz = surface.rz(x)

@@ -41,7 +41,7 @@ from ._fast import monotone_tables, newton, own_sign, scan
 from ._local import own_second_root, point_parameters
 
 if TYPE_CHECKING:
-    from . import SurfaceOfRevolution
+    from ._protocol import Revolved
 
 __all__ = ["grazing", "hits", "ray_terms"]
 
@@ -61,7 +61,7 @@ BLOCK = 16
 CHUNK = 1 << 20
 
 
-def _blocks(surface: SurfaceOfRevolution) -> dict:
+def _blocks(surface: Revolved) -> dict:
     """Ring bounds of blocks of ``BLOCK`` grid cells (cached on the surface)."""
     g = surface._grid
     if "blocks" in g:
@@ -91,7 +91,7 @@ def _blocks(surface: SurfaceOfRevolution) -> dict:
     return out
 
 
-def ray_terms(surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray) -> tuple:
+def ray_terms(surface: Revolved, o: np.ndarray, v: np.ndarray) -> tuple:
     """``(|v|, v / |v|, o . a, c, k^2, d^2, h*, s*)`` of the lines ``o + s v``
     (module docstring; ``s*`` where they come closest to the axis)."""
     speed = np.sqrt(np.einsum("ij,ij->i", v, v))
@@ -109,7 +109,7 @@ def ray_terms(surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray) -> tup
 
 
 def ray_derivatives(
-    surface: SurfaceOfRevolution, c2: np.ndarray, k2: np.ndarray, hs: np.ndarray
+    surface: Revolved, c2: np.ndarray, k2: np.ndarray, hs: np.ndarray
 ) -> Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
     """``(F', F'')`` at ``t = x`` of the rays ``rows`` (per-ray ``c^2``,
     ``k^2`` and ``h*``; ``F = c^2 (rho^2 - d^2) - k^2 (z - h*)^2``)."""
@@ -128,7 +128,7 @@ def ray_derivatives(
 
 
 def grazing(
-    surface: SurfaceOfRevolution,
+    surface: Revolved,
     origins: np.ndarray,
     directions: np.ndarray,
     smax: np.ndarray,
@@ -186,7 +186,7 @@ def grazing(
 
 
 def hits(
-    surface: SurfaceOfRevolution,
+    surface: Revolved,
     origins: np.ndarray,
     directions: np.ndarray,
     smax: np.ndarray,
@@ -291,7 +291,7 @@ def _broad(blk: dict, oa, c, k2, d2, ss, eps, lam_max) -> tuple[np.ndarray, np.n
     return np.nonzero(ok)
 
 
-def _trimmed(surface: SurfaceOfRevolution, ray, pr, p, a, b, za, zb, dza, span):  # noqa: ANN001, ANN202
+def _trimmed(surface: Revolved, ray, pr, p, a, b, za, zb, dza, span):  # noqa: ANN001, ANN202
     """Cells ``[a, b]`` (pairs ``p``, ``z`` monotone) cut to ``eps < lam < lam_max``,
     ``lam = (z - o_a) / c``: the cell tuple of :func:`_narrow` (all inside the range)."""
     c, k2, d2, hs, ss, eps, lam_max = ray
@@ -331,7 +331,7 @@ def _trimmed(surface: SurfaceOfRevolution, ray, pr, p, a, b, za, zb, dza, span):
     return (p, lo_t, hi_t, f[:n], f[n:], df[:n], df[n:], np.ones(n, bool))
 
 
-def _narrow(surface: SurfaceOfRevolution, blk: dict, pr, pb, ray, out) -> None:  # noqa: ANN001
+def _narrow(surface: Revolved, blk: dict, pr, pb, ray, out) -> None:  # noqa: ANN001
     """Scan the (ray, block) pairs on the fine grid; set ``out[ray]`` for hits."""
     c, k2, d2, hs, ss, eps, lam_max = ray
     g = surface._grid

@@ -18,14 +18,12 @@ import numpy as np
 from ._convex import meridian_coordinates, t_of_points
 
 if TYPE_CHECKING:
-    from . import SurfaceOfRevolution
+    from ._protocol import Revolved
 
 __all__ = ["near_own_hits", "normal_component", "own_second_root", "point_parameters"]
 
 
-def normal_component(
-    surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray, t: np.ndarray
-) -> np.ndarray:
+def normal_component(surface: Revolved, o: np.ndarray, v: np.ndarray, t: np.ndarray) -> np.ndarray:
     """``N . v / |v|`` at points ``o`` with parameter ``t`` (``N = (z' r - rho' a)
     / |P'|``, ``r`` the radial unit vector; any unit vector at the axis, where
     ``z' = 0``)."""
@@ -38,7 +36,7 @@ def normal_component(
 
 
 def near_own_hits(
-    surface: SurfaceOfRevolution, o: np.ndarray, vh: np.ndarray, eps: float
+    surface: Revolved, o: np.ndarray, vh: np.ndarray, eps: float
 ) -> tuple[np.ndarray, np.ndarray]:
     """The first two outputs of :func:`own_second_root`."""
     hit, decided, _, _ = own_second_root(surface, o, vh, eps)
@@ -46,7 +44,7 @@ def near_own_hits(
 
 
 def own_second_root(
-    surface: SurfaceOfRevolution, o: np.ndarray, vh: np.ndarray, eps: float
+    surface: Revolved, o: np.ndarray, vh: np.ndarray, eps: float
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Rays from points ``o`` on the surface (unit directions ``vh``) that meet
     it again at ``0 < lam <= eps``, where the ray test cannot tell the second
@@ -90,7 +88,7 @@ def own_second_root(
     return hit, found, np.where(found, nv, np.nan), np.where(found, t, np.nan)
 
 
-def point_parameters(surface: SurfaceOfRevolution, o: np.ndarray) -> np.ndarray:
+def point_parameters(surface: Revolved, o: np.ndarray) -> np.ndarray:
     """The parameter ``t`` of points ``o`` on the surface (NaN where it is not
     recovered to ``1e-9`` of the size; profiles with monotone heights)."""
     h, r, _ = meridian_coordinates(surface, o)
@@ -99,7 +97,7 @@ def point_parameters(surface: SurfaceOfRevolution, o: np.ndarray) -> np.ndarray:
 
 
 def _recovered(
-    surface: SurfaceOfRevolution, h: np.ndarray, r: np.ndarray
+    surface: Revolved, h: np.ndarray, r: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``t`` of the meridian points ``(r, h)``, ``rho(t)``, and whether the
     point lies on the profile there to ``1e-9`` of the size."""

@@ -42,14 +42,12 @@ from ._hits import CONTOUR_SELF_RTOL, FLAT_C, GRAZE_FTOL, _blocks, grazing, ray_
 from ._local import normal_component, point_parameters
 
 if TYPE_CHECKING:
-    from . import SurfaceOfRevolution
+    from ._protocol import Revolved
 
 __all__ = ["far_rows", "margins", "rim_function"]
 
 
-def rim_function(
-    surface: SurfaceOfRevolution, o: np.ndarray, v: np.ndarray, t_e: float
-) -> np.ndarray:
+def rim_function(surface: Revolved, o: np.ndarray, v: np.ndarray, t_e: float) -> np.ndarray:
     """``F_e / size^2`` (module docstring): zero where the line ``o + s v``
     meets the parallel ``t_e``."""
     _, _, _, c, k2, d2, hstar, _ = ray_terms(surface, o, v)
@@ -59,7 +57,7 @@ def rim_function(
 
 
 def margins(
-    surface: SurfaceOfRevolution,
+    surface: Revolved,
     origins: np.ndarray,
     directions: np.ndarray,
     smax: np.ndarray,
@@ -106,7 +104,7 @@ def margins(
 
 
 def far_rows(
-    surface: SurfaceOfRevolution,
+    surface: Revolved,
     tab: dict,
     o: np.ndarray,
     v: np.ndarray,
