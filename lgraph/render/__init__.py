@@ -26,7 +26,7 @@
 
 A scene of one ellipsoid drawn by exact ellipses (its parameter lines and
 contour, nothing else) takes steps 2 to 6 in closed form instead, without a
-ray test (:mod:`lgraph.render.lone`): the same strokes at a fraction of the
+ray test (``lgraph/render/lone.py``): the same strokes at a fraction of the
 fixed cost.
 """
 
