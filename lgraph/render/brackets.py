@@ -40,13 +40,15 @@ def exact_crossings(
     m = len(t)
     if not m:
         return t, tau, np.empty(0)
-    span_c, span_n = s.t1[c] - s.t0[c], s.t1[n] - s.t0[n]
-    # differences toward the inside of each curve's range
-    hc = 1e-7 * span_c * np.where(t + 1e-7 * span_c <= s.t1[c], 1.0, -1.0)
-    hn = 1e-7 * span_n * np.where(tau + 1e-7 * span_n <= s.t1[n], 1.0, -1.0)
+    lo_c, hi_c = np.minimum(s.t0[c], s.t1[c]), np.maximum(s.t0[c], s.t1[c])
+    lo_n, hi_n = np.minimum(s.t0[n], s.t1[n]), np.maximum(s.t0[n], s.t1[n])
+    t, tau = np.clip(t, lo_c, hi_c), np.clip(tau, lo_n, hi_n)
     cid = np.concatenate([c, c, n, n])
     gap = np.full(m, np.inf)
     for step in range(steps + 1):
+        # differences toward the inside of each curve's range, from where
+        # the points are now (a step may have carried them to an end)
+        hc, hn = _inward(t, lo_c, hi_c), _inward(tau, lo_n, hi_n)
         _, _, xy = s.evaluate(cid, np.concatenate([t, t + hc, tau, tau + hn]), True)
         pc, pc2, pn, pn2 = np.split(xy, 4)
         r = pc - pn
@@ -60,9 +62,16 @@ def exact_crossings(
             dt = (-r[:, 0] * (-dn[:, 1]) + r[:, 1] * (-dn[:, 0])) / det
             dtau = (dc[:, 0] * (-r[:, 1]) - dc[:, 1] * (-r[:, 0])) / det
         ok = np.isfinite(dt) & np.isfinite(dtau)
-        t = np.clip(np.where(ok, t + dt, t), s.t0[c], s.t1[c])
-        tau = np.clip(np.where(ok, tau + dtau, tau), s.t0[n], s.t1[n])
+        t = np.clip(np.where(ok, t + dt, t), lo_c, hi_c)
+        tau = np.clip(np.where(ok, tau + dtau, tau), lo_n, hi_n)
     return t, tau, gap
+
+
+def _inward(t: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """A difference step of 1e-7 of the range ``lo .. hi`` from ``t`` that
+    stays inside it."""
+    h = 1e-7 * (hi - lo)
+    return np.where(t + h <= hi, h, -h)
 
 
 def net_guesses(

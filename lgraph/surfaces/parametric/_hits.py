@@ -121,10 +121,10 @@ def _newton(
         big = np.maximum(np.abs(d1) / lim[:, 0], np.abs(d2) / lim[:, 1])
         f = np.where(big > 1, 1.0 / np.where(big > 1, big, 1.0), 1.0)
         good &= np.isfinite(d1) & np.isfinite(d2) & np.isfinite(d3)
-        act = act[good]
-        uv[act, 0] += (f * d1)[good]
-        uv[act, 1] += (f * d2)[good]
-        s[act] += (f * d3)[good]
+        act, f = act[good], f[good]
+        uv[act, 0] += f * d1[good]
+        uv[act, 1] += f * d2[good]
+        s[act] += f * d3[good]
         uv[act] = d.wrap(uv[act])
         if cell is not None:
             act = act[_in_cell(surface, uv[act], cell[0][act], cell[1][act], 1.5)]
