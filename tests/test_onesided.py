@@ -71,11 +71,11 @@ def test_cross_cap_implicit_equation(size):
     np.testing.assert_allclose(p, s.point(np.pi - u, v + np.pi), atol=1e-15)
 
 
-def _self_intersection_points(surface):
+def _self_intersection_points(surface, n=200):
     (b,) = lg.SelfIntersection().batches(surface, None)
     out = []
     for k in range(len(b)):
-        t = np.linspace(b.t0[k], b.t1[k], 200)
+        t = np.linspace(b.t0[k], b.t1[k], n)
         x, uv = b.evaluate(np.full(len(t), k), t)
         out.append(x)
     return out
@@ -139,9 +139,52 @@ def test_boy_surface_self_intersection_is_double():
         assert gaps.max() > 20
 
 
+def test_klein_bottle_self_intersection_is_one_closed_curve():
+    """The bottle's neck passes through its side in one closed curve (its
+    preimage on the side is a small loop of about 3 x 1 cells of the search
+    grid: a search that tested only the shifted cell of each leaf pair lost a
+    quarter of it)."""
+    s = lg.KleinBottle()
+    (b,) = lg.SelfIntersection().batches(s, None)
+    assert len(b) == 1 and bool(b.closed[0])
+    t = np.linspace(b.t0[0], b.t1[0], 2001)
+    x, _ = b.evaluate(np.zeros(len(t), int), t)
+    step = np.linalg.norm(np.diff(x, axis=0), axis=1)
+    assert np.linalg.norm(x[-1] - x[0]) <= 2 * step.max()
+    assert step.max() < 3 * np.median(step)  # no jump over a missing piece
+
+
+def test_boy_surface_self_intersection_is_three_equal_loops_through_the_triple_point():
+    """Boy's surface (threefold symmetric about the z axis) meets itself in
+    three loops through one triple point on the axis: the curve drawn is
+    whole (its ends at the triple point, no piece missing), it returns to the
+    triple point after each third of its length, and a turn by 120 degrees
+    maps it onto itself.  (A search that lost leaf pairs, or split the
+    preimage at the wrong places, drew two pieces ending in mid-air.)"""
+    s = lg.BoySurface()
+    curves = _self_intersection_points(s, n=6001)
+    ends = np.array([p for x in curves for p in (x[0], x[-1])])
+    triple = ends[0]
+    assert np.abs(triple[:2]).max() < 1e-6 * s.size  # on the axis
+    np.testing.assert_allclose(ends, np.broadcast_to(triple, ends.shape), atol=1e-4 * s.size)
+    x = np.concatenate(curves)
+    step = np.linalg.norm(np.diff(x, axis=0), axis=1)
+    length = np.r_[0.0, np.cumsum(step)]
+    # passages through the triple point: one every third of the length
+    near = np.linalg.norm(x - triple, axis=1) < 1e-3 * s.size
+    passes = np.unique(np.round(length[near] / length[-1] * 3).astype(int))
+    assert passes.tolist() == [0, 1, 2, 3]
+    c, sn = np.cos(2 * np.pi / 3), np.sin(2 * np.pi / 3)
+    turn = np.array([[c, -sn, 0.0], [sn, c, 0.0], [0.0, 0.0, 1.0]])
+    from scipy.spatial import cKDTree
+
+    gap, _ = cKDTree(x).query(x @ turn.T)
+    assert gap.max() < 2 * step.max()
+
+
 def test_every_builtin_draws_its_self_intersection():
     for s in (lg.KleinBottle(), lg.BoySurface(), lg.RomanSurface(), lg.CrossCap()):
-        curves = _self_intersection_points(s)
+        curves = _self_intersection_points(s, n=1000)
         assert curves
         for x in curves:
             assert np.isfinite(x).all()

@@ -8,24 +8,29 @@ A point of self-intersection has two parameter pairs, ``x(a) = x(b)`` with
    :mod:`lgraph.surfaces.parametric._boxes`) are intersected with each other level by
    level; overlapping leaf pairs that are not neighbours in the parameter
    plane (periodic seams included) may hold a piece of the curve.
-2. **Crossings**: the curve's preimage crosses the edges of the patches.  On
-   every edge of both patches of a pair, Newton's method solves the three
-   equations ``x(edge(s)) = x(b)`` for ``(s, b1, b2)``; solutions on the edge
-   and in the partner patch are kept, so both preimages are found; of the two
-   preimages of each point the one that comes first along a fixed generic
-   direction of the parameter plane is kept (each point is drawn once).
-3. **Curves**: crossings are joined patch by patch (like marching squares)
-   into polylines in the parameter plane (a polyline within a patch of one
-   already taken is the same curve seen from a neighbouring patch column, as
-   when the curve runs along a grid line, and is dropped).  Wherever the
-   renderer evaluates a curve, its spline (and its partner's) is projected
-   onto ``x(a) = x(b)`` by minimal-norm Gauss-Newton steps in the four
-   parameters, so drawn points lie on both sheets to rounding level.
+2. **Crossings**: the curve's preimage crosses the edges of the traced cells
+   (the patch grid shifted by a generic fraction of a cell; each pair tests
+   the four traced cells overlapping its patch).  On every edge, Newton's
+   method solves the three equations ``x(edge(s)) = x(b)`` for
+   ``(s, b1, b2)`` from the partner patch's centre; solutions on the edge and
+   near the partner patch are kept, so both preimages are found.
+3. **Curves**: crossings are joined cell by cell (like marching squares)
+   into polylines in the parameter plane.  Of the two preimages of each
+   point one is drawn: a polyline whose partners lie on one already taken is
+   dropped (it is that one's other preimage, or the same curve seen from a
+   neighbouring cell column); along a polyline that holds partners of its own
+   points (a Whitney umbrella's segment, mirrored about the pinch point; Boy's
+   surface, where one closed preimage covers the three loops through the
+   triple point twice) the points met before their partners are kept, each
+   run carried on to where the partner changes sheets.  Wherever the renderer
+   evaluates a curve, its spline (and its partner's) is projected onto
+   ``x(a) = x(b)`` by minimal-norm Gauss-Newton steps in the four parameters,
+   so drawn points lie on both sheets to rounding level.
 
 Curves end a patch or two short of points where the preimages meet (the
 pinch point of a Whitney umbrella), where the two sheets become tangent.
-Tested on the Whitney umbrella, a tube piercing itself and the figure-8
-Klein bottle.
+Tested on the Whitney umbrella, a tube piercing itself, the Klein bottles,
+the Roman surface, the cross-cap and Boy's surface.
 
 >>> import numpy as np
 >>> import lgraph as lg
@@ -55,6 +60,9 @@ __all__ = ["SelfIntersection", "self_intersection_points"]
 
 #: Newton iterations for an edge crossing
 EDGE_NEWTON_STEPS = 12
+#: edge Newton gives up on a row that strays this many cells from its edge or
+#: from its partner's patch
+WANDER = 1.0
 #: leaf pairs this close in the parameter grid (in cells) are neighbours, not
 #: candidates (padded boxes of nearby patches always overlap)
 NEAR_CELLS = 2
@@ -67,6 +75,10 @@ PROJECT_STEPS = 4
 #: (partners of one branch move up to about 1/6 of the grid a cell, on a tube
 #: crossing itself; the Roman surface's triple point 1/2)
 PARTNER_FRACTION = 0.25
+#: a crossing's partner lies on a polyline when within this many cells of it
+#: (the polyline's chords miss the curve by far less; another branch through a
+#: triple point is this close only within a fraction of a cell of it)
+PARTNER_CELLS = 0.25
 #: branches reaching less far than this (relative to the surface size: invisible) are
 #: dropped: pieces at a triple or pinch point where a preimage is a pole
 MIN_EXTENT = 1e-4
@@ -92,8 +104,10 @@ def _leaf_pairs(surface: Surface) -> tuple[np.ndarray, np.ndarray, int]:
         c2 = ((2 * i2)[:, None] + di) * (2 * m) + (2 * j2)[:, None] + dj
         a = np.repeat(c1, 4, axis=1).ravel()
         b = np.tile(c2, (1, 4)).ravel()
-        keep = a <= b
-        a, b = a[keep], b[keep]
+        # children of one box: each unordered pair once; children of two boxes:
+        # all 16 pairs (a child of the first may have the larger index)
+        keep = (a <= b) | np.repeat(pairs[:, 0] != pairs[:, 1], 16)
+        a, b = np.minimum(a[keep], b[keep]), np.maximum(a[keep], b[keep])
         lo, hi = H.flat[lvl]
         ov = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
         pairs = np.stack([a[ov], b[ov]], axis=1)
@@ -157,8 +171,11 @@ def _solve_edges(surface: Surface, a0, a1, bc, h, size: float):  # noqa: ANN001,
         s[act] += step[:, 0]
         b[act] = d.clip(b[act] + step[:, 1:])
         ok[act] &= good
-        # rows that wander far from their edge and patch are lost causes
-        near = (s[act] > -4) & (s[act] < 5)
+        # rows that wander from their edge or from their partner's patch are lost
+        # causes (a crossing past the edge, or with a partner in another patch, is
+        # found from that edge's cell, or from a pair with that patch)
+        far = np.abs((d.nearest_image(bc[act], b[act]) - bc[act]) / h).max(axis=1)
+        near = (s[act] > -WANDER) & (s[act] < 1 + WANDER) & (far < 1 + WANDER)
         ok[act] &= near
         moving = np.abs(step).max(axis=1) > 1e-15 * (1 + np.abs(s[act]))
         act = act[good & near & moving]
@@ -182,64 +199,63 @@ def self_intersection_points(surface: Surface) -> dict:
     size = surface.size
     A, B, C = [], [], []
     # traced cells: the leaves shifted by a generic fraction of a cell (a curve
-    # along a grid line, u = 0 say, must still cross edges); at the low ends of
-    # non-periodic parameters the cell before the first leaf is added
+    # along a grid line, u = 0 say, must still cross edges)
     for first, second in ((p, q), (q, p)):
+        # the four traced cells overlapping each leaf (one before the first leaf
+        # where a parameter does not wrap), each once per partner leaf
         i, j = first // n, first % n
-        bc = (np.stack([second // n, second % n], axis=1) + 0.5) * h + lo
-        cells = [(i, j, bc)]
-        for ax, (ii, jj) in ((0, (i - 1, j)), (1, (i, j - 1))):
-            sel = (i if ax == 0 else j) == 0
-            if not per[ax] and sel.any():
-                cells.append((ii[sel], jj[sel], bc[sel]))
-        sel = (i == 0) & (j == 0) & (not per[0]) & (not per[1])
-        if sel.any():
-            cells.append((i[sel] - 1, j[sel] - 1, bc[sel]))
-        for ci, cj, cb in cells:
-            corner = (np.stack([ci, cj], axis=1) + GRID_SHIFT) * h + lo
-            # edges: along u1 at cj and cj + 1, along u2 at ci and ci + 1; each
-            # borders the cell (ci, cj) and the neighbour across it
-            for off0, off1, nb in (
-                ((0, 0), (1, 0), (0, -1)),
-                ((0, 1), (1, 1), (0, 1)),
-                ((0, 0), (0, 1), (-1, 0)),
-                ((1, 0), (1, 1), (1, 0)),
-            ):
-                a0 = corner + np.array(off0) * h
-                a1 = corner + np.array(off1) * h
-                for ax in (0, 1):  # cells overhanging the patch end at its edge
-                    if not per[ax]:
-                        a0[:, ax] = np.clip(a0[:, ax], *d.range(ax))
-                        a1[:, ax] = np.clip(a1[:, ax], *d.range(ax))
-                s, b, ok = _solve_edges(surface, a0, a1, cb, h, size)
-                ok &= (s >= 0) & (s <= 1)
-                pa = a0 + s[:, None] * (a1 - a0)
-                for ax in (0, 1):  # on the drawn patch (a shifted cell may overhang it)
-                    if not per[ax]:
-                        ok &= (pa[:, ax] >= d.range(ax)[0]) & (pa[:, ax] <= d.range(ax)[1])
-                # the partner must be another point of the patch, not the trivial b = a
-                gap = np.abs(b - pa)
-                for ax in (0, 1):
-                    if per[ax]:
-                        gap[:, ax] = np.abs(
-                            np.mod(gap[:, ax] + 0.5 * n * h[ax], n * h[ax]) - 0.5 * n * h[ax]
-                        )
-                ok &= np.any(gap > NEAR_CELLS * h, axis=1)
-                if any(d.twisted):  # nor the same point across a twisted seam
-                    ok &= np.abs((d.nearest_image(pa, b) - pa) / h).max(axis=1) > NEAR_CELLS
-                bw = d.wrap(b, clip=False)
-                for ax in (0, 1):
-                    if not d.glued[ax]:
-                        lo_, hi_ = d.range(ax)
-                        ok &= (bw[:, ax] >= lo_ - 1e-9 * h[ax]) & (bw[:, ax] <= hi_ + 1e-9 * h[ax])
-                b = bw
-                if not ok.any():
-                    continue
-                own = np.stack([ci[ok], cj[ok]], axis=1)
-                other = own + np.array(nb)
-                A.append(d.wrap(pa[ok], clip=False))
-                B.append(b[ok])
-                C.append(np.stack([_cell_id(own, n, d), _cell_id(other, n, d)], axis=1))
+        ci = np.concatenate([i, i - 1, i, i - 1])
+        cj = np.concatenate([j, j, j - 1, j - 1])
+        if per[0]:
+            ci %= n
+        if per[1]:
+            cj %= n
+        ci, cj, partner = np.unique(np.stack([ci, cj, np.tile(second, 4)]), axis=1)
+        cb = (np.stack([partner // n, partner % n], axis=1) + 0.5) * h + lo
+        corner = (np.stack([ci, cj], axis=1) + GRID_SHIFT) * h + lo
+        # edges: along u1 at cj and cj + 1, along u2 at ci and ci + 1; each
+        # borders the cell (ci, cj) and the neighbour across it
+        for off0, off1, nb in (
+            ((0, 0), (1, 0), (0, -1)),
+            ((0, 1), (1, 1), (0, 1)),
+            ((0, 0), (0, 1), (-1, 0)),
+            ((1, 0), (1, 1), (1, 0)),
+        ):
+            a0 = corner + np.array(off0) * h
+            a1 = corner + np.array(off1) * h
+            for ax in (0, 1):  # cells overhanging the patch end at its edge
+                if not per[ax]:
+                    a0[:, ax] = np.clip(a0[:, ax], *d.range(ax))
+                    a1[:, ax] = np.clip(a1[:, ax], *d.range(ax))
+            s, b, ok = _solve_edges(surface, a0, a1, cb, h, size)
+            ok &= (s >= 0) & (s <= 1)
+            pa = a0 + s[:, None] * (a1 - a0)
+            for ax in (0, 1):  # on the drawn patch (a shifted cell may overhang it)
+                if not per[ax]:
+                    ok &= (pa[:, ax] >= d.range(ax)[0]) & (pa[:, ax] <= d.range(ax)[1])
+            # the partner must be another point of the patch, not the trivial b = a
+            gap = np.abs(b - pa)
+            for ax in (0, 1):
+                if per[ax]:
+                    gap[:, ax] = np.abs(
+                        np.mod(gap[:, ax] + 0.5 * n * h[ax], n * h[ax]) - 0.5 * n * h[ax]
+                    )
+            ok &= np.any(gap > NEAR_CELLS * h, axis=1)
+            if any(d.twisted):  # nor the same point across a twisted seam
+                ok &= np.abs((d.nearest_image(pa, b) - pa) / h).max(axis=1) > NEAR_CELLS
+            bw = d.wrap(b, clip=False)
+            for ax in (0, 1):
+                if not d.glued[ax]:
+                    lo_, hi_ = d.range(ax)
+                    ok &= (bw[:, ax] >= lo_ - 1e-9 * h[ax]) & (bw[:, ax] <= hi_ + 1e-9 * h[ax])
+            b = bw
+            if not ok.any():
+                continue
+            own = np.stack([ci[ok], cj[ok]], axis=1)
+            other = own + np.array(nb)
+            A.append(d.wrap(pa[ok], clip=False))
+            B.append(b[ok])
+            C.append(np.stack([_cell_id(own, n, d), _cell_id(other, n, d)], axis=1))
     if not A:
         empty = np.empty((0, 2))
         return {"a": empty, "b": empty, "cells": np.empty((0, 2), int), "n": n}
@@ -325,43 +341,120 @@ def _trace(points: dict, surface: Surface) -> list[tuple[np.ndarray, bool]]:
     return out
 
 
-def _near(a: np.ndarray, other: np.ndarray, h: np.ndarray, d: Any = None) -> np.ndarray:
-    """For each point of ``a``: whether a point of ``other`` is within about a
-    cell (across the glued seams of domain ``d``, if given)."""
+def _cell_distances(a: np.ndarray, other: np.ndarray, h: np.ndarray, d: Any = None) -> np.ndarray:
+    """Distances in cells (max norm) from each point of ``a`` to each of
+    ``other``, across the glued seams of domain ``d`` if given: ``(len(a), len(other))``."""
     q = other[None, :, :]
     if d is not None and any(d.glued):
         q = d.nearest_image(a[:, None, :], q)
-    dist = np.abs((a[:, None, :] - q) / h).max(axis=2).min(axis=1)
-    return dist <= 1.5
+    return np.abs((a[:, None, :] - q) / h).max(axis=2)
+
+
+def _near(a: np.ndarray, other: np.ndarray, h: np.ndarray, d: Any = None) -> np.ndarray:
+    """For each point of ``a``: whether a point of ``other`` is within about a
+    cell (across the glued seams of domain ``d``, if given)."""
+    return _cell_distances(a, other, h, d).min(axis=1) <= 1.5
+
+
+def _to_polyline(p: np.ndarray, line: np.ndarray, h: np.ndarray, d: Any = None) -> np.ndarray:
+    """Distances in cells from each point of ``p`` to each segment
+    ``line[i], line[i + 1]`` of a polyline (across glued seams of ``d``):
+    ``(len(p), len(line) - 1)``."""
+    s0 = line[:-1]
+    s1 = line[1:] if d is None or not any(d.glued) else d.nearest_image(s0, line[1:])
+    q = p[:, None, :] if d is None or not any(d.glued) else d.nearest_image(s0, p[:, None, :])
+    e = (s1 - s0) / h
+    w = (q - s0) / h
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = np.clip(np.nan_to_num(np.sum(w * e, -1) / np.sum(e * e, -1)), 0.0, 1.0)
+    return np.linalg.norm(w - f[..., None] * e, axis=-1)
+
+
+def _first_of_pairs(a: np.ndarray, b: np.ndarray, h: np.ndarray, d: Any = None) -> np.ndarray:
+    """Along a polyline that holds both preimages of some of its points: which
+    points to keep, so that of a point and its partner the one met first is kept.
+
+    The partner of point ``k`` lies on segment ``j`` of the polyline when
+    ``b[k]`` is within ``PARTNER_CELLS`` of it and, mutually, ``a[k]`` is that
+    close to the partners' polyline there; a point is dropped when its partner
+    comes before it.  On a Whitney umbrella's segment (the partner mirrored
+    about the pinch point) the part up to the pinch point is kept; on a closed
+    curve that is its own partner half way round, half of it; on Boy's
+    surface, whose one preimage runs through pairs of partner arcs and through
+    arcs whose partners lie elsewhere, one arc of each pair and the others.
+    """
+    if len(a) < 2:
+        return np.ones(len(a), bool)
+    k = np.arange(len(a))
+    to_line = _to_polyline(b, a, h, d)  # partner of k to segment i of the polyline
+    seg = to_line.argmin(axis=1)
+    around = np.clip(seg[:, None] + np.arange(-1, 2), 0, len(a) - 2)
+    back = _to_polyline(a, b, h, d)[k[:, None], around].min(axis=1)  # and the other way
+    mutual = (to_line[k, seg] <= PARTNER_CELLS) & (back <= PARTNER_CELLS)
+    return ~(mutual & (seg + 1 < k))
+
+
+def _cut(a: np.ndarray, b: np.ndarray, i0: int, i1: int, h: np.ndarray, d: Any) -> np.ndarray:
+    """Where a kept run ends on the segment from its last point ``i0`` to the
+    dropped ``i1``: at a crossing of the polyline with itself (a triple
+    point's preimage, where the partner switches sheets), else at ``i1``.
+    Returns the pair ``(a, b)`` there, ``(2, 2)``."""
+    glued = d is not None and any(d.glued)
+    img = d.nearest_image if glued else (lambda p, q: np.asarray(q, float))
+    p0, p1 = a[i0], img(a[i0], a[i1])
+    q0 = img(p0, a[:-1])
+    q1 = img(q0, a[1:])
+    e, f, w = (p1 - p0) / h, (q1 - q0) / h, (q0 - p0) / h
+    det = e[0] * -f[:, 1] + f[:, 0] * e[1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = (w[:, 0] * -f[:, 1] + f[:, 0] * w[:, 1]) / det
+        u = (e[0] * w[:, 1] - e[1] * w[:, 0]) / det
+    m = np.arange(len(q0))
+    hit = (t > 0) & (t <= 1) & (u >= 0) & (u <= 1) & (np.abs(m - min(i0, i1)) > 1)
+    t_cut = float(t[hit].min()) if hit.any() else 1.0
+    b1 = img(b[i0], b[i1])
+    return np.stack([p0 + t_cut * (p1 - p0), b[i0] + t_cut * (b1 - b[i0])])
 
 
 def _one_preimage(
     lines: list, pts: dict, h: np.ndarray, d: Any = None
-) -> list[tuple[np.ndarray, bool]]:
-    """Of the two preimages of each curve, one: ``(index order, closed)`` pieces.
+) -> list[tuple[np.ndarray, np.ndarray, bool]]:
+    """Of the two preimages of each curve, one: ``(a, b, closed)`` pieces (the
+    points and their partners).
 
     A traced polyline whose partners lie on another polyline already taken is
     that one's other preimage (dropped; the same curve seen from a neighbouring
-    cell column is dropped the same way).  A polyline that is its own partner
-    (the preimages join, as at a Whitney umbrella's pinch point) keeps the
-    parts whose point comes first along a fixed generic direction."""
+    cell column is dropped the same way).  A polyline that holds partners of its
+    own points (the preimages join, as at a Whitney umbrella's pinch point, or
+    one closed preimage runs through both, as on Boy's surface) keeps the points
+    met before their partners (:func:`_first_of_pairs`), each run carried on to
+    where the partner switches (:func:`_cut`)."""
     a_all, b_all = pts["a"], pts["b"]
-    key = np.array([0.7548776662466927, 0.5698402909980532]) / h
     taken: list[np.ndarray] = []
-    out: list[tuple[np.ndarray, bool]] = []
+    out: list[tuple[np.ndarray, np.ndarray, bool]] = []
     for idx, closed in sorted(lines, key=lambda line: -len(line[0])):
         a, b = a_all[idx], b_all[idx]
         if any(_near(b, o, h, d).mean() > 0.5 or _near(a, o, h, d).all() for o in taken):
             continue
         taken.append(a)
-        if _near(b, a, h, d).mean() <= 0.5:
-            out.append((idx, closed))
+        keep = _first_of_pairs(a, b, h, d)
+        if keep.all():
+            out.append((a, b, closed))
             continue
-        first = a @ key < b @ key
-        edges = np.flatnonzero(np.diff(np.r_[0, first.astype(int), 0]))
+        if closed and keep[0] and keep[-1]:  # a run through the closing point: one piece
+            shift = len(keep) - int(np.flatnonzero(~keep)[-1]) - 1
+            a, b, keep = np.roll(a, shift, 0), np.roll(b, shift, 0), np.roll(keep, shift)
+        edges = np.flatnonzero(np.diff(np.r_[0, keep.astype(int), 0]))
         for s0, s1 in zip(edges[::2], edges[1::2]):
-            if s1 - s0 >= 3:
-                out.append((idx[s0:s1], False))
+            if s1 - s0 < 3:
+                continue
+            ends = [np.stack([a[s0:s1], b[s0:s1]], axis=1)]
+            if s0 > 0:
+                ends.insert(0, _cut(a, b, s0, s0 - 1, h, d)[None])
+            if s1 < len(a):
+                ends.append(_cut(a, b, s1 - 1, s1, h, d)[None])
+            run = np.concatenate(ends)
+            out.append((run[:, 0], run[:, 1], False))
     return out
 
 
@@ -448,12 +541,10 @@ class SelfIntersection(Family):
         lines = _trace(pts, surface)
         if not lines:
             return []
-        a_all, b_all = pts["a"], pts["b"]
         d = surface.domain
         h = np.array([d.span(0), d.span(1)]) / pts["n"]
         branches = [
-            _Branch(surface, a_all[i], b_all[i], closed)
-            for i, closed in _one_preimage(lines, pts, h, d)
+            _Branch(surface, a, b, closed) for a, b, closed in _one_preimage(lines, pts, h, d)
         ]
         branches = [br for br in branches if br.length > 0 and _extent(surface, br) > MIN_EXTENT]
         if not branches:
