@@ -42,8 +42,12 @@ __all__ = ["occlusion_depth"]
 #: the first on numeric surfaces)
 _MAX_PASSES = 1
 #: changes of depth are located to this fraction of the curve's parameter
-#: span, as the flips of visibility
-DEPTH_RTOL = tol.BISECTION_RTOL
+#: span: finer than the guided ones (``GUIDE_RTOL``) and than anything a print
+#: shows; closer to a fold than about ``SELF_HIT_RTOL`` of the scene the count
+#: is ambiguous anyway (its own root and the fold's merge).  Each factor of 8
+#: costs one K-section step of ray tests: 1e-12, as the flips, took three more
+#: steps than this (a quarter of the cross-cap's render)
+DEPTH_RTOL = 1e-9
 #: a change of depth on the one crossing of its chord with the net is taken
 #: there (both strokes end on it) when the counts this far (a fraction of the
 #: curve's span) on either side agree with the bracket's ends
