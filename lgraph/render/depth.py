@@ -217,8 +217,7 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
     view = s.view[cid]
     # on the net's crossing where it is one and the counts beside it agree
     guided, t_lo, t_hi = _guided(s, vis, a, dlo, dhi)
-    # both strokes end on the crossing itself: they meet, with no gap
-    lo[guided] = hi[guided] = 0.5 * (t_lo[guided] + t_hi[guided])
+    lo[guided], hi[guided] = t_lo[guided], t_hi[guided]
     # K-section on the count for the rest, K chosen as for the flips
     K = sections(view, np.ones(len(a), dtype=bool), s.views.k, vis)
     for _ in range(tol.BISECTION_MAX_STEPS):
@@ -233,10 +232,12 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
         moved = new_hi >= 0
         hi[go[moved]] = tm[new_hi[moved]]
         dhi[go[moved]] = n[new_hi[moved]]
+    # both strokes end on the middle of the final bracket: they meet, with no gap
+    lo = hi = 0.5 * (lo + hi)
     t = np.column_stack([lo, hi]).ravel()
     c = np.repeat(cid, 2)
     xyz, uv, xy = s.evaluate(c, t, True)
-    ends = np.column_stack([dlo, dhi]).ravel()  # counted at these very points
+    ends = np.column_stack([dlo, dhi]).ravel()  # the depths counted on either side
     new = merge(s, np.repeat(a, 2), c, t, xyz, uv, xy, np.ones(len(t), dtype=bool))
     out = np.empty(len(s.t), dtype=np.int64)
     out[~new] = depth
