@@ -2,7 +2,8 @@
 sub-points and its cost per bracket, and the net's crossings, refined on the
 exact curves, that narrow a bracket at once (a flip of visibility or a
 change of depth most likely lies where the curve passes behind the net:
-:mod:`lgraph.render.flips`, :mod:`lgraph.render.depth`)."""
+:mod:`lgraph.render.flips`, :mod:`lgraph.render.depth`), and the zeros of
+``N . ray`` where a curve passes its own surface's contour."""
 
 from __future__ import annotations
 
@@ -11,13 +12,29 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _tolerance as tol
+from .._roots import bracketed_roots
 from .crossings import net_meetings
 from .sampling import Samples
 
 if TYPE_CHECKING:
     from .occlusion import Occlusion
 
-__all__ = ["exact_crossings", "net_guesses", "sections", "sub_points"]
+#: a flip where a curve passes its own contour is confirmed by ray tests this
+#: far (of the span) on either side of the contour, the first that agree: the
+#: numeric ray test takes a fold's root closer than about 1e-5 of the scene
+#: for the point's own, so right beside the contour it sees the point visible
+OWN_GUIDE_RTOLS = (1e-7, 1e-5, 1e-4, 1e-3)
+#: wider than this, only in a chord that holds no other candidate
+ALONE_RTOL = 1e-5
+
+__all__ = [
+    "exact_crossings",
+    "net_guesses",
+    "own_contour_flips",
+    "own_contour_zeros",
+    "sections",
+    "sub_points",
+]
 
 
 def exact_crossings(
@@ -128,3 +145,91 @@ def sub_points(lo: np.ndarray, hi: np.ndarray, idx: np.ndarray, k: np.ndarray) -
         return new_lo, new_hi
 
     return rep, t, first_differing
+
+
+def own_contour_zeros(
+    s: Samples,
+    vis: Occlusion,
+    cid: np.ndarray,
+    owner: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    rtol: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Where curves ``cid`` cross their own surfaces' contours between ``lo``
+    and ``hi``: the zero of ``N . ray`` (:meth:`Occlusion.own_cosines`,
+    continuous along a curve on its own surface), refined on that function
+    (:func:`~lgraph._roots.bracketed_roots`) to ``rtol`` of the shortest
+    curve's span, with no ray test.  Returns the zeros
+    and which brackets hold one (``N . ray`` known at both ends, of opposite
+    signs: a crossing, or an odd number of them).  ``lo <= hi``."""
+    m = len(cid)
+    if not m:
+        return np.zeros(0), np.zeros(0, dtype=bool)
+    view = s.view[cid]
+    lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
+
+    def cosine(c: np.ndarray, t: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        xyz, uv, _ = s.evaluate(c, t, True)
+        return vis.own_cosines(xyz, owner[rows], view[rows], uv)[:, 0]
+
+    both = np.arange(m)
+    f = cosine(np.tile(cid, 2), np.concatenate([lo, hi]), np.tile(both, 2))
+    flo, fhi = f[:m], f[m:]
+    ok = np.isfinite(flo) & np.isfinite(fhi) & (flo * fhi < 0)
+    t = 0.5 * (lo + hi)
+    rows = np.flatnonzero(ok)
+    if len(rows):
+        span = np.abs(s.t1[cid[rows]] - s.t0[cid[rows]])
+        t[rows] = bracketed_roots(
+            lambda x, sel: cosine(cid[rows[sel]], x, rows[sel]),
+            lo[rows],
+            hi[rows],
+            flo[rows],
+            fhi[rows],
+            xtol=rtol * float(span.min()),
+        )
+    return t, ok
+
+
+def own_contour_flips(
+    s: Samples,
+    vis: Occlusion,
+    cid: np.ndarray,
+    owner: np.ndarray,
+    kind: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    hlo: np.ndarray,
+    alone: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Flips of visibility at a curve's own contour: in brackets ``lo < hi``
+    (hidden state ``hlo`` at ``lo``) across which ``N . ray`` changes sign,
+    the flip lies at its zero (where the fold of the curve's own surface
+    comes in front; :func:`own_contour_zeros`, no ray test) when ray tests
+    ``OWN_GUIDE_RTOLS`` of the span either side agree, the first width that
+    does; the widths over ``ALONE_RTOL`` only where the bracket holds no other
+    candidate (``alone``: a wide agreement elsewhere could straddle another
+    flip).  Returns the brackets' rows and their flips."""
+    t, ok = own_contour_zeros(s, vis, cid, owner, lo, hi, tol.BISECTION_RTOL)
+    todo, t = np.flatnonzero(ok), t[ok]
+    span = np.abs(s.t1[cid] - s.t0[cid])
+    rows, out = [], []
+    for rtol in OWN_GUIDE_RTOLS:
+        w = rtol * span[todo]
+        inside = (t - w > lo[todo]) & (t + w < hi[todo]) & (alone[todo] | (rtol <= ALONE_RTOL))
+        i, ti, w = todo[inside], t[inside], w[inside]
+        if not len(i):
+            break
+        c = np.tile(cid[i], 2)
+        xyz, _, xy = s.evaluate(c, np.concatenate([ti - w, ti + w]), True)
+        h = vis.hidden(xyz, xy, np.tile(owner[i], 2), np.tile(kind[i], 2), view=s.view[c])
+        before, after = np.split(h, 2)
+        good = (before == hlo[i]) & (after != hlo[i])
+        rows.append(i[good])
+        out.append(ti[good])
+        keep = ~np.isin(todo, i[good])
+        todo, t = todo[keep], t[keep]
+    if not rows:
+        return np.zeros(0, dtype=int), np.zeros(0)
+    return np.concatenate(rows), np.concatenate(out)

@@ -5,8 +5,10 @@ ellipsoid's contour, the flip is in closed form; other flips caused by an
 ellipsoid, and flips on the curves of a surface that offers transition
 functions for its own points (:meth:`~lgraph.Surface.visibility_margins`,
 e.g. a surface of revolution: its contour, its rims), are found by a
-safeguarded parabola search on a continuous margin (about three steps); the
-rest by K-section on the exact visibility test.  Every result is verified
+safeguarded parabola search on a continuous margin (about three steps);
+flips where a curve passes its own surface's contour at the zero of
+``N . ray``, confirmed by ray tests beside it; the rest by K-section on the
+exact visibility test.  Every result is verified
 by the full test, and both ends of every located flip are inserted into the
 samples.  Before refinement,
 ``seed_crossings`` puts samples on both sides of the crossings of exact
@@ -23,7 +25,8 @@ import numpy as np
 from .. import _tolerance as tol
 from ..scene.projectors import CentralProjector, Projector
 from ..surfaces._base import ON
-from .brackets import net_guesses, sections, sub_points
+from .brackets import net_guesses, own_contour_flips, sections, sub_points
+from .crossings import net_meetings
 from .occlusion import Occlusion
 from .sampling import Samples, merge
 
@@ -424,6 +427,26 @@ def _guided(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     fl.lo[i[good]], fl.hi[i[good]] = t[good] - w[good], t[good] + w[good]
 
 
+def _own_guided(s: Samples, fl: _Flips, vis: Occlusion) -> None:
+    """Brackets still a whole chord across which the curve passes its own
+    surface's contour close about the zero of ``N . ray`` there, where ray
+    tests beside it confirm the flip
+    (:func:`~lgraph.render.brackets.own_contour_flips`; at the wider
+    widths only in chords the net does not cross)."""
+    whole = np.flatnonzero(fl.open() & (fl.lo == s.t[fl.f]) & (fl.hi == s.t[fl.f + 1]))
+    if not len(whole):
+        return
+    # chords the net does not cross: the own contour is their only candidate
+    q = net_meetings(s, vis, fl.f[whole])[0]
+    alone = np.bincount(np.searchsorted(fl.f[whole], q), minlength=len(whole)) == 0
+    rows, t = own_contour_flips(
+        s, vis, *(x[whole] for x in (fl.cid, fl.owner, fl.kind, fl.lo, fl.hi, fl.hlo)), alone
+    )
+    i = whole[rows]
+    step = 0.25 * tol.BISECTION_RTOL * np.maximum(fl.span[i], np.abs(t))
+    fl.lo[i], fl.hi[i] = t - step, t + step
+
+
 def _k_section(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     """Remaining flips: each step splits every bracket into ``K`` parts at once
     (the exactness of bisection in ``1/log2(K)`` of the steps), keeping the
@@ -459,6 +482,7 @@ def locate_flips(s: Samples, vis: Occlusion) -> None:
     _margin_search(s, fl, vis)
     _own_margin_search(s, fl, vis)
     _guided(s, fl, vis)
+    _own_guided(s, fl, vis)
     _k_section(s, fl, vis)
     # both ends of each bracket, in order, right after the flip's first sample
     t = np.column_stack([fl.lo, fl.hi]).ravel()
