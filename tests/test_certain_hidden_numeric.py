@@ -204,12 +204,12 @@ def test_flips_at_a_numeric_surfaces_own_contour_are_exact(angles):
     of ``N . ray`` (confirmed by ray tests beside it).  The numeric ray test
     takes a fold's root within about 1e-5 of the scene for the point's own, so
     a K-section on it alone put 16-24 of about 40 transitions per view more
-    than 1e-6 of the scene past the contour; now 1-3 (a sample itself so close
-    to the contour that the ray test classifies it wrongly: docs/mathematics.rst),
-    against the torus's exact quartic."""
+    than 1e-6 of the scene past the contour (up to 5e-5); now at most one (a
+    sample itself so close to the contour that the ray test classifies it
+    wrongly: docs/mathematics.rst), against the torus's exact quartic."""
     errors = _torus_flip_errors(angles)
-    assert np.mean(errors > 1e-6) <= 0.1
-    assert errors.max() < 1e-4
+    assert np.sum(errors > 1e-6) <= 2
+    assert errors.max() < 2e-5
 
 
 def test_mutation_flips_by_k_section_alone_miss_the_own_contour(monkeypatch):

@@ -24,8 +24,9 @@ if TYPE_CHECKING:
 #: numeric ray test takes a fold's root closer than about 1e-5 of the scene
 #: for the point's own, so right beside the contour it sees the point visible
 OWN_GUIDE_RTOLS = (1e-7, 1e-5, 1e-4, 1e-3)
-#: wider than this, only in a chord that holds no other candidate
-ALONE_RTOL = 1e-5
+#: wider than this, only in a chord that holds no other candidate (a wide
+#: agreement could straddle another flip)
+ALONE_RTOL = 1e-4
 
 __all__ = [
     "exact_crossings",
