@@ -8,13 +8,17 @@ cd "$(dirname "$0")/.."
 # are the ruled surfaces and the numeric contours; and the ray tests and transition
 # functions of the monkey saddle and the surfaces of revolution; and many views
 # rendered together, each as alone, issue 14; the contours and edges near the
-# singular lines of a parametrization, issue 25)
+# singular lines of a parametrization, issue 25; the self-intersections of Boy's
+# surface and the Klein bottle, and the flips at a numeric surface's own contour)
 tests=(tests/test_field_lines.py tests/test_numeric_curvature.py tests/test_surface_curves.py
        tests/test_parametric.py lgraph/families lgraph/curvature.py
        tests/test_roots.py tests/test_ruled.py lgraph/_roots.py
        tests/test_polyroots.py tests/test_monkey_saddle_margins.py tests/test_surface_memo.py
        tests/test_revolution_fast.py tests/test_revolution_visibility.py
-       tests/test_render_views.py tests/test_singular_edges.py)
+       tests/test_render_views.py tests/test_singular_edges.py
+       "tests/test_onesided.py::test_boy_surface_self_intersection_is_three_equal_loops_through_the_triple_point"
+       "tests/test_onesided.py::test_klein_bottle_self_intersection_is_one_closed_curve"
+       "tests/test_certain_hidden_numeric.py::test_flips_at_a_numeric_surfaces_own_contour_are_exact")
 
 features="$(python .ci/npy_dispatch.py)"
 echo "ci: numeric families with NPY_DISABLE_CPU_FEATURES='$features'"

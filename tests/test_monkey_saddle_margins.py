@@ -140,7 +140,7 @@ def test_drawing_equals_the_bisected_one(hidden_lines: bool, monkeypatch) -> Non
     # (N . ray there is about 1e-13, at the margins' flips 1e-9)
     from lgraph.render import flips
 
-    monkeypatch.setattr(flips, "_own_guided", lambda s, fl, vis: None)
+    monkeypatch.setattr(flips, "_own_guided", lambda *args: None)
     rng = np.random.default_rng(21)
     views = [lg.ParallelProjector.from_angles(-35, 30), *_views(rng)[::2]]
     fast, slow = SURFACE, _Bisected(extent=1.0, c=0.6)

@@ -40,15 +40,14 @@ def _near(a: np.ndarray, other: np.ndarray, h: np.ndarray, d: Any = None) -> np.
     return _cell_distances(a, other, h, d).min(axis=1) <= 1.5
 
 
-def _to_polyline(p: np.ndarray, line: np.ndarray, h: np.ndarray, d: Any = None) -> np.ndarray:
-    """Distances in cells from each point of ``p`` to each segment
-    ``line[i], line[i + 1]`` of a polyline (across glued seams of ``d``):
-    ``(len(p), len(line) - 1)``."""
-    s0 = line[:-1]
-    s1 = line[1:] if d is None or not any(d.glued) else d.nearest_image(s0, line[1:])
-    q = p[:, None, :] if d is None or not any(d.glued) else d.nearest_image(s0, p[:, None, :])
-    e = (s1 - s0) / h
-    w = (q - s0) / h
+def _to_segments(
+    p: np.ndarray, s0: np.ndarray, s1: np.ndarray, h: np.ndarray, d: Any = None
+) -> np.ndarray:
+    """Distances in cells from points ``p`` to segments ``s0, s1`` (broadcast,
+    ``(..., 2)``; across glued seams of ``d``)."""
+    if d is not None and any(d.glued):
+        s1, p = d.nearest_image(s0, s1), d.nearest_image(s0, p)
+    e, w = (s1 - s0) / h, (p - s0) / h
     with np.errstate(invalid="ignore", divide="ignore"):
         f = np.clip(np.nan_to_num(np.sum(w * e, -1) / np.sum(e * e, -1)), 0.0, 1.0)
     return np.linalg.norm(w - f[..., None] * e, axis=-1)
@@ -70,10 +69,12 @@ def _first_of_pairs(a: np.ndarray, b: np.ndarray, h: np.ndarray, d: Any = None) 
     if len(a) < 2:
         return np.ones(len(a), bool)
     k = np.arange(len(a))
-    to_line = _to_polyline(b, a, h, d)  # partner of k to segment i of the polyline
+    # the partner of each point to every segment of the polyline ...
+    to_line = _to_segments(b[:, None], a[None, :-1], a[None, 1:], h, d)
     seg = to_line.argmin(axis=1)
+    # ... and the point to the partners' polyline there, the other way round
     around = np.clip(seg[:, None] + np.arange(-1, 2), 0, len(a) - 2)
-    back = _to_polyline(a, b, h, d)[k[:, None], around].min(axis=1)  # and the other way
+    back = _to_segments(a[:, None], b[around], b[around + 1], h, d).min(axis=1)
     mutual = (to_line[k, seg] <= PARTNER_CELLS) & (back <= PARTNER_CELLS)
     return ~(mutual & (seg + 1 < k))
 

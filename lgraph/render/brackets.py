@@ -93,14 +93,20 @@ def _inward(t: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
 
 
 def net_guesses(
-    s: Samples, vis: Occlusion, a: np.ndarray, margin: float
+    s: Samples,
+    vis: Occlusion,
+    a: np.ndarray,
+    margin: float,
+    meetings: tuple[np.ndarray, ...] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """For the chords ``a, a + 1`` (sorted) that cross the sampled net once:
     that crossing on the exact curves (:func:`exact_crossings`), where a
     visibility or depth change of the chord most likely lies.  Returns the
     chords' rows in ``a``, the crossings' parameters and ``w = margin`` of
-    each curve's span, for those whose ``t -+ w`` lie inside their chord."""
-    q, f, b, g = net_meetings(s, vis, a)
+    each curve's span, for those whose ``t -+ w`` lie inside their chord.
+    ``meetings``: :func:`~lgraph.render.crossings.net_meetings` of ``a``, if
+    the caller has them."""
+    q, f, b, g = net_meetings(s, vis, a) if meetings is None else meetings
     row = np.searchsorted(a, q)
     sel = (np.bincount(row, minlength=len(a))[row] == 1) & (b >= 0)  # one, on a sampled curve
     row, q, f, b, g = row[sel], q[sel], f[sel], b[sel], g[sel]

@@ -64,6 +64,13 @@ class _Flips:
     def __len__(self) -> int:
         return len(self.f)
 
+    def whole(self, s: Samples, idx: np.ndarray | None = None) -> np.ndarray:
+        """Mask of brackets (all, or those at ``idx``) still open and still
+        their whole chord between samples ``s.t`` (no search has narrowed them)."""
+        sel = slice(None) if idx is None else idx
+        f = self.f[sel]
+        return self.open(idx) & (self.lo[sel] == s.t[f]) & (self.hi[sel] == s.t[f + 1])
+
     def open(
         self,
         idx: np.ndarray | None = None,
@@ -407,15 +414,13 @@ def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
     return np.where((r > 0) & (r < 1), r, 0.5)
 
 
-def _guided(s: Samples, fl: _Flips, vis: Occlusion) -> None:
-    """Brackets still a whole chord that the sampled net crosses once shrink
-    to ``GUIDE_RTOL`` of the span about the crossing on the exact curves
-    (:func:`~lgraph.render.brackets.net_guesses`) when tests there agree:
-    two ray tests for the K-section's first half."""
-    whole = np.flatnonzero(fl.open() & (fl.lo == s.t[fl.f]) & (fl.hi == s.t[fl.f + 1]))
-    if not len(whole):
-        return
-    row, t, w = net_guesses(s, vis, fl.f[whole], GUIDE_RTOL)
+def _guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings: tuple) -> None:
+    """Brackets ``whole`` (still a whole chord; ``meetings``, their
+    :func:`~lgraph.render.crossings.net_meetings`) that the sampled net
+    crosses once shrink to ``GUIDE_RTOL`` of the span about the crossing on
+    the exact curves (:func:`~lgraph.render.brackets.net_guesses`) when tests
+    there agree: two ray tests for the K-section's first half."""
+    row, t, w = net_guesses(s, vis, fl.f[whole], GUIDE_RTOL, meetings)
     if not len(row):
         return
     i = whole[row]
@@ -427,18 +432,17 @@ def _guided(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     fl.lo[i[good]], fl.hi[i[good]] = t[good] - w[good], t[good] + w[good]
 
 
-def _own_guided(s: Samples, fl: _Flips, vis: Occlusion) -> None:
-    """Brackets still a whole chord across which the curve passes its own
-    surface's contour close about the zero of ``N . ray`` there, where ray
-    tests beside it confirm the flip
-    (:func:`~lgraph.render.brackets.own_contour_flips`; at the wider
-    widths only in chords the net does not cross)."""
-    whole = np.flatnonzero(fl.open() & (fl.lo == s.t[fl.f]) & (fl.hi == s.t[fl.f + 1]))
+def _own_guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings: tuple) -> None:
+    """Brackets of ``whole`` still a whole chord across which the curve passes
+    its own surface's contour close about the zero of ``N . ray`` there, where
+    ray tests beside it confirm the flip
+    (:func:`~lgraph.render.brackets.own_contour_flips`; at the wider widths
+    only in chords the net does not cross: ``meetings`` has none)."""
+    alone = np.bincount(np.searchsorted(fl.f[whole], meetings[0]), minlength=len(whole)) == 0
+    still = fl.whole(s, whole)
+    whole, alone = whole[still], alone[still]
     if not len(whole):
         return
-    # chords the net does not cross: the own contour is their only candidate
-    q = net_meetings(s, vis, fl.f[whole])[0]
-    alone = np.bincount(np.searchsorted(fl.f[whole], q), minlength=len(whole)) == 0
     rows, t = own_contour_flips(
         s, vis, *(x[whole] for x in (fl.cid, fl.owner, fl.kind, fl.lo, fl.hi, fl.hlo)), alone
     )
@@ -481,8 +485,11 @@ def locate_flips(s: Samples, vis: Occlusion) -> None:
         return
     _margin_search(s, fl, vis)
     _own_margin_search(s, fl, vis)
-    _guided(s, fl, vis)
-    _own_guided(s, fl, vis)
+    whole = np.flatnonzero(fl.whole(s))
+    if len(whole):  # the net's crossings of the chords no search has narrowed
+        meetings = net_meetings(s, vis, fl.f[whole])
+        _guided(s, fl, vis, whole, meetings)
+        _own_guided(s, fl, vis, whole, meetings)
     _k_section(s, fl, vis)
     # both ends of each bracket, in order, right after the flip's first sample
     t = np.column_stack([fl.lo, fl.hi]).ravel()
