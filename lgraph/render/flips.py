@@ -71,6 +71,11 @@ class _Flips:
         f = self.f[sel]
         return self.open(idx) & (self.lo[sel] == s.t[f]) & (self.hi[sel] == s.t[f + 1])
 
+    def collapse(self, i: np.ndarray, t: np.ndarray) -> None:
+        """Brackets ``i`` closed about their flips ``t`` (no further search)."""
+        step = 0.25 * tol.BISECTION_RTOL * np.maximum(self.span[i], np.abs(t))
+        self.lo[i], self.hi[i] = t - step, t + step
+
     def open(
         self,
         idx: np.ndarray | None = None,
@@ -417,9 +422,10 @@ def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
 def _guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings: tuple) -> None:
     """Brackets ``whole`` (still a whole chord; ``meetings``, their
     :func:`~lgraph.render.crossings.net_meetings`) that the sampled net
-    crosses once shrink to ``GUIDE_RTOL`` of the span about the crossing on
-    the exact curves (:func:`~lgraph.render.brackets.net_guesses`) when tests
-    there agree: two ray tests for the K-section's first half."""
+    crosses once collapse onto the crossing on the exact curves
+    (:func:`~lgraph.render.brackets.net_guesses`: where the curve passes
+    behind that net curve) when ray tests ``GUIDE_RTOL`` of the span either
+    side of it agree: two ray tests instead of a K-section's dozens."""
     row, t, w = net_guesses(s, vis, fl.f[whole], GUIDE_RTOL, meetings)
     if not len(row):
         return
@@ -429,7 +435,7 @@ def _guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings:
     h = vis.hidden(xyz, xy, np.tile(fl.owner[i], 2), np.tile(fl.kind[i], 2), view=s.view[c])
     before, after = np.split(h, 2)
     good = (before == fl.hlo[i]) & (after != fl.hlo[i])
-    fl.lo[i[good]], fl.hi[i[good]] = t[good] - w[good], t[good] + w[good]
+    fl.collapse(i[good], t[good])
 
 
 def _own_guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings: tuple) -> None:
@@ -446,9 +452,7 @@ def _own_guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meeti
     rows, t = own_contour_flips(
         s, vis, *(x[whole] for x in (fl.cid, fl.owner, fl.kind, fl.lo, fl.hi, fl.hlo)), alone
     )
-    i = whole[rows]
-    step = 0.25 * tol.BISECTION_RTOL * np.maximum(fl.span[i], np.abs(t))
-    fl.lo[i], fl.hi[i] = t - step, t + step
+    fl.collapse(whole[rows], t)
 
 
 def _k_section(s: Samples, fl: _Flips, vis: Occlusion) -> None:
@@ -460,10 +464,7 @@ def _k_section(s: Samples, fl: _Flips, vis: Occlusion) -> None:
     still = fl.open()
     if not still.any():
         return
-    # cost of a step: a fixed part plus the sub-points times the cost of a test;
-    # pick the K with the least cost per bit gained (deterministic: no timing).
-    # Per view: views rendered together split each bracket as a view alone would
-    K = sections(s.view[fl.cid], still, s.views.k, vis)  # per bracket
+    K = sections(s.view[fl.cid], still, s.views.k, vis)  # per bracket, per view
     for _ in range(tol.BISECTION_MAX_STEPS):
         idx = np.nonzero(fl.open())[0]
         if not len(idx):
