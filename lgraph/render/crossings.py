@@ -114,9 +114,15 @@ def _view_crossings(
         np.minimum(q0, q1), np.maximum(q0, q1), np.minimum(n0, n1), np.maximum(n0, n1)
     )
     a, b = qi[pq], ni[pn]
-    keep = cid[a] != cid[b]  # a curve does not cross itself into hiding
-    a, b = a[keep], b[keep]
+    # a net curve may pass behind another part of itself (a contour crossing
+    # its own image at a T-junction): a chord meets the same curve's other
+    # chords, but not itself nor its neighbours (nor, at a closed curve's
+    # seam, a chord that shares an end with it: crossings strictly inside)
+    same = cid[a] == cid[b]
+    keep = ~same | (np.abs(a - b) > 1)
+    a, b, same = a[keep], b[keep], same[keep]
     hit, fa, fb = chord_crossings(*(np.take(xy, i, axis=0) for i in (a, a + 1, b, b + 1)))
+    hit &= ~same | ((fa > 0) & (fa < 1) & (fb > 0) & (fb < 1))
     return a[hit], fa[hit], b[hit], fb[hit]
 
 
