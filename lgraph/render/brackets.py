@@ -29,6 +29,8 @@ OWN_GUIDE_RTOLS = (1e-7, 1e-5, 1e-4, 1e-3)
 ALONE_RTOL = 1e-4
 
 __all__ = [
+    "beside",
+    "confirmed",
     "exact_crossings",
     "net_guesses",
     "own_contour_flips",
@@ -118,6 +120,30 @@ def net_guesses(
     met = gap <= 1e-9 * np.hypot(*(s.xy[q + 1] - s.xy[q]).T)
     met &= (t - w > s.t[q]) & (t + w < s.t[q + 1])
     return row[met], t[met], w[met]
+
+
+def beside(
+    s: Samples,
+    vis: Occlusion,
+    cid: np.ndarray,
+    owner: np.ndarray,
+    kind: np.ndarray,
+    t: np.ndarray,
+    w: np.ndarray,
+    count: bool = False,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The hidden flags (``count``: the sheets in front, at least 1) of
+    curves ``cid`` (owners ``owner``, ownership codes ``kind``) at ``t - w``
+    and ``t + w``: the two ray tests that confirm a change located at ``t``."""
+    c = np.tile(cid, 2)
+    xyz, _, xy = s.evaluate(c, np.concatenate([t - w, t + w]), True)
+    owner, kind = np.tile(owner, 2), np.tile(kind, 2)
+    if count:
+        h = np.maximum(vis.sheets(xyz, xy, owner, kind, view=s.view[c]), 1)
+    else:
+        h = vis.hidden(xyz, xy, owner, kind, view=s.view[c])
+    before, after = np.split(h, 2)
+    return before, after
 
 
 def sections(view: np.ndarray, open_: np.ndarray, k_views: int, vis: Occlusion) -> np.ndarray:
@@ -219,7 +245,32 @@ def own_contour_flips(
     candidate (``alone``: a wide agreement elsewhere could straddle another
     flip).  Returns the brackets' rows and their flips."""
     t, ok = own_contour_zeros(s, vis, cid, owner, lo, hi, tol.BISECTION_RTOL)
-    todo, t = np.flatnonzero(ok), t[ok]
+    return confirmed(s, vis, cid, owner, kind, lo, hi, hlo, alone, np.flatnonzero(ok), t[ok])
+
+
+def confirmed(
+    s: Samples,
+    vis: Occlusion,
+    cid: np.ndarray,
+    owner: np.ndarray,
+    kind: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    hlo: np.ndarray,
+    alone: np.ndarray,
+    todo: np.ndarray,
+    t: np.ndarray,
+    dhi: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Flips ``t`` proposed in brackets ``todo`` (of ``lo < hi``, hidden
+    state ``hlo`` at ``lo``) that ray tests ``OWN_GUIDE_RTOLS`` of the span
+    either side confirm, the first width that does; the widths over
+    ``ALONE_RTOL`` only where the bracket holds no other candidate
+    (``alone``).  The numeric ray test takes a root closer than about 1e-5
+    of the scene to the ray's origin for the origin's own, so beside the
+    own contour or another sheet through the curve it errs.  With ``dhi``,
+    changes of depth from ``hlo`` to ``dhi`` instead (sheets counted).
+    Returns the confirmed brackets' rows and their flips or changes."""
     span = np.abs(s.t1[cid] - s.t0[cid])
     rows, out = [], []
     for rtol in OWN_GUIDE_RTOLS:
@@ -228,11 +279,8 @@ def own_contour_flips(
         i, ti, w = todo[inside], t[inside], w[inside]
         if not len(i):
             break
-        c = np.tile(cid[i], 2)
-        xyz, _, xy = s.evaluate(c, np.concatenate([ti - w, ti + w]), True)
-        h = vis.hidden(xyz, xy, np.tile(owner[i], 2), np.tile(kind[i], 2), view=s.view[c])
-        before, after = np.split(h, 2)
-        good = (before == hlo[i]) & (after != hlo[i])
+        before, after = beside(s, vis, cid[i], owner[i], kind[i], ti, w, dhi is not None)
+        good = (before == hlo[i]) & ((after != hlo[i]) if dhi is None else (after == dhi[i]))
         rows.append(i[good])
         out.append(ti[good])
         keep = ~np.isin(todo, i[good])

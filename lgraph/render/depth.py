@@ -26,9 +26,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _tolerance as tol
-from .brackets import net_guesses, sections, sub_points
-from .crossings import net_crossings
+from .brackets import confirmed, net_guesses, sections, sub_points
+from .crossings import net_crossings, net_meetings
 from .sampling import merge
+from .sheets import through_sheets
 
 if TYPE_CHECKING:
     from .occlusion import Occlusion
@@ -216,8 +217,19 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
     owner, kind = s.owners(a)
     view = s.view[cid]
     # on the net's crossing where it is one and the counts beside it agree
-    guided, t_lo, t_hi = _guided(s, vis, a, dlo, dhi)
+    meetings = net_meetings(s, vis, a)
+    guided, t_lo, t_hi = _guided(s, vis, a, dlo, dhi, meetings)
     lo[guided], hi[guided] = t_lo[guided], t_hi[guided]
+    # where the curve passes through another sheet of its own surface
+    one = np.flatnonzero(~guided & (np.abs(dhi - dlo) == 1))
+    rows, t = through_sheets(
+        s, vis, cid[one], owner[one], kind[one], lo[one], hi[one], (dhi > dlo)[one]
+    )
+    alone = np.bincount(np.searchsorted(a, meetings[0]), minlength=len(a)) == 0
+    x = [y[one] for y in (cid, owner, kind, lo, hi, dlo, alone)]
+    rows, t = confirmed(s, vis, *x, rows, t, dhi[one])
+    lo[one[rows]] = hi[one[rows]] = t
+    guided[one[rows]] = True
     # K-section on the count for the rest, K chosen as for the flips
     K = sections(view, np.ones(len(a), dtype=bool), s.views.k, vis)
     for _ in range(tol.BISECTION_MAX_STEPS):
@@ -246,7 +258,7 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
 
 
 def _guided(
-    s: Samples, vis: Occlusion, a: np.ndarray, dlo: np.ndarray, dhi: np.ndarray
+    s: Samples, vis: Occlusion, a: np.ndarray, dlo: np.ndarray, dhi: np.ndarray, meetings: tuple
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Brackets ``a, a + 1`` (depths ``dlo``, ``dhi``) whose chord crosses
     the sampled net once: where the curve passes behind that net curve, the
@@ -259,7 +271,7 @@ def _guided(
     Enneper's surface, none agreed; those stay with the bisection.)"""
     m = len(a)
     ok, lo, hi = np.zeros(m, dtype=bool), np.full(m, np.nan), np.full(m, np.nan)
-    row, t, w = net_guesses(s, vis, a, GUIDE_RTOL)
+    row, t, w = net_guesses(s, vis, a, GUIDE_RTOL, meetings)
     if not len(row):
         return ok, lo, hi
     q = a[row]

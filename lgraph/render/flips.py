@@ -1,18 +1,18 @@
 """Locating visibility flips between samples to near machine precision.
 
 Where an exact ellipse (a parameter line of an ellipsoid) crosses its own
-ellipsoid's contour, the flip is in closed form; other flips caused by an
+ellipsoid's contour, the flip is in closed form
+(:mod:`lgraph.render.ellipses`); other flips caused by an
 ellipsoid, and flips on the curves of a surface that offers transition
 functions for its own points (:meth:`~lgraph.Surface.visibility_margins`,
 e.g. a surface of revolution: its contour, its rims), are found by a
 safeguarded parabola search on a continuous margin (about three steps);
-flips where a curve passes its own surface's contour at the zero of
-``N . ray``, confirmed by ray tests beside it; the rest by K-section on the
-exact visibility test.  Every result is verified
-by the full test, and both ends of every located flip are inserted into the
-samples.  Before refinement,
-``seed_crossings`` puts samples on both sides of the crossings of exact
-ellipses that fall between two samples of one state.
+flips on the net's one crossing of their chord, where a curve passes its
+own surface's contour (the zero of ``N . ray``) or through another sheet of
+its own numeric surface (:mod:`lgraph.render.sheets`) are taken there when
+ray tests beside it confirm them; the rest by K-section on the exact
+visibility test.  Every result is verified by the full test, and both ends
+of every located flip are inserted into the samples.
 """
 
 from __future__ import annotations
@@ -23,12 +23,20 @@ import attrs
 import numpy as np
 
 from .. import _tolerance as tol
-from ..scene.projectors import CentralProjector, Projector
 from ..surfaces._base import ON
-from .brackets import net_guesses, own_contour_flips, sections, sub_points
+from .brackets import (
+    beside,
+    confirmed,
+    net_guesses,
+    own_contour_flips,
+    sections,
+    sub_points,
+)
 from .crossings import net_meetings
+from .ellipses import contour_crossings, ellipse_crossings, seed_crossings
 from .occlusion import Occlusion
 from .sampling import Samples, merge
+from .sheets import through_sheets
 
 __all__ = ["contour_crossings", "locate_flips", "seed_crossings"]
 
@@ -75,6 +83,15 @@ class _Flips:
         """Brackets ``i`` closed about their flips ``t`` (no further search)."""
         step = 0.25 * tol.BISECTION_RTOL * np.maximum(self.span[i], np.abs(t))
         self.lo[i], self.hi[i] = t - step, t + step
+
+    def confirm(
+        self, s: Samples, vis: Occlusion, i: np.ndarray, t: np.ndarray, w: np.ndarray
+    ) -> None:
+        """Brackets ``i`` collapse onto ``t`` where ray tests ``w`` before and
+        after it see the flip (:func:`~lgraph.render.brackets.beside`)."""
+        before, after = beside(s, vis, self.cid[i], self.owner[i], self.kind[i], t, w)
+        good = (before == self.hlo[i]) & (after != self.hlo[i])
+        self.collapse(i[good], t[good])
 
     def open(
         self,
@@ -279,56 +296,6 @@ def _verify(
     return ~hv[:n] & hv[n:] & ~fl.open(idx, np.minimum(a, b), np.maximum(a, b))
 
 
-def contour_crossings(
-    e: np.ndarray,
-    A: np.ndarray,
-    bq: np.ndarray,
-    d: np.ndarray,
-    projector: Projector,
-    centre: np.ndarray,
-) -> np.ndarray:
-    """Where exact ellipses ``x = c + p cos t + r sin t`` (rows of ``e``)
-    cross the contour of the ellipsoids ``x.A x + bq.x + d = 0`` they lie on
-    (coefficients in coordinates centred on ``centre``, see
-    :class:`~lgraph.render.occlusion.Occlusion`): ``(n, 2)`` angles ``t`` (defined
-    modulo 2 pi; NaN: no crossing).
-
-    On its quadric a point is hidden by it exactly when ``(2 A x + bq) . w <
-    0`` (``w`` toward the viewer), and there that function is linear in
-    ``x``: ``x . (2 A o + bq) + bq . o + 2 d`` for an eye ``o``,
-    ``x . 2 A v + bq . v`` for a parallel view ``v``.  On the ellipse it is
-    ``P + Q cos t + R sin t``, zero at ``atan2(R, Q) -+ acos(-P / hypot(Q, R))``.
-    """
-    e = e.copy()
-    e[:, 0] -= centre
-    if isinstance(projector, CentralProjector):
-        eye = projector.eye - centre
-        k = 2 * A @ eye + bq
-        k0 = bq @ eye + 2 * d
-    else:
-        v = projector.frame[2]
-        k = 2 * A @ v
-        k0 = bq @ v
-    P = np.einsum("ni,ni->n", k, e[:, 0]) + k0
-    Q = np.einsum("ni,ni->n", k, e[:, 1])
-    R = np.einsum("ni,ni->n", k, e[:, 2])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        half = np.arccos(-P / np.hypot(Q, R))  # NaN: no crossing at all
-    return np.arctan2(R, Q)[:, None] + half[:, None] * np.array([-1.0, 1.0])
-
-
-def _crossings(s: Samples, c: np.ndarray, q: np.ndarray, vis: Occlusion) -> np.ndarray:
-    """:func:`contour_crossings` of the exact ellipses of curves ``c`` on
-    grouped quadrics ``q``, each curve in its view."""
-    out = np.empty((len(c), 2))
-    for k, rows in s.views.groups(s.view[c]):
-        cr, qr = c[rows], q[rows]
-        out[rows] = contour_crossings(
-            s.ellipses[cr], vis.q_A[qr], vis.q_b[qr], vis.q_d[qr], s.views.projectors[k], vis.centre
-        )
-    return out
-
-
 def _closed_form(
     s: Samples,
     fl: _Flips,
@@ -347,7 +314,7 @@ def _closed_form(
     sel = np.flatnonzero(on & np.isfinite(s.ellipses[fl.cid[idx], 0, 0]))
     if not len(sel):
         return
-    root = _crossings(s, fl.cid[idx[sel]], q[sel], vis)
+    root = ellipse_crossings(s, fl.cid[idx[sel]], q[sel], vis)
     lo, hi = np.minimum(a[sel], b[sel]), np.maximum(a[sel], b[sel])
     root += 2 * np.pi * np.round(((0.5 * (lo + hi))[:, None] - root) / (2 * np.pi))
     inside = (root > lo[:, None]) & (root < hi[:, None])
@@ -357,58 +324,6 @@ def _closed_form(
     toward_b = np.sign(b[sel] - a[sel])
     a[sel] = root - toward_b * step
     b[sel] = root + toward_b * step
-
-
-def seed_crossings(s: Samples, vis: Occlusion) -> None:
-    """Insert samples on both sides of every contour crossing of an exact
-    ellipse on its own ellipsoid that lies in a chord without a flip.
-
-    Such a chord holds two crossings (both crossings of the curve: it meets
-    the contour twice at most), i.e. a piece visible or hidden between two
-    samples of the other state, which sampling alone would miss however
-    fine.  The new samples are fresh (tested later); usually there are none.
-    """
-    if s.ellipses is None or not vis.nq:
-        return
-    q_of_node = np.full(int(max(s.owner.max(), vis.q_node.max())) + 1, -1)
-    q_of_node[vis.q_node] = np.arange(vis.nq)
-    c = np.flatnonzero(np.isfinite(s.ellipses[:, 0, 0]) & (s.kind == ON) & (s.owner >= 0))
-    q = q_of_node[s.owner[c]]
-    c, q = c[q >= 0], q[q >= 0]
-    c, q = c[vis.q_pd[q]], q[vis.q_pd[q]]
-    if not len(c):
-        return
-    root = _crossings(s, c, q, vis)
-    t0, span = s.t0[c][:, None], (s.t1 - s.t0)[c][:, None]
-    root = t0 + np.mod(root - t0, 2 * np.pi)  # the first turn from t0 on (spans <= 2 pi)
-    inside = np.isfinite(root) & (root < t0 + span)
-    cid, t = np.repeat(c, 2)[inside.ravel()], root[inside]
-    own_q = np.repeat(q, 2)[inside.ravel()]
-    if not len(t):
-        return
-    # the chord holding each crossing: samples ``j - 1`` and ``j``
-    j = s.after(cid, t) + 1
-    ok = (j > 0) & (j < len(s.t))
-    j, cid, t, own_q = j[ok], cid[ok], t[ok], own_q[ok]
-    quiet = (s.cid[j - 1] == cid) & (s.cid[j] == cid) & (s.hidden[j - 1] == s.hidden[j])
-    # ... and both ends visible, or both hidden by this ellipsoid (ends hidden
-    # by another surface are refined anyway, and there the crossing may not
-    # show at all)
-    quiet &= ~s.hidden[j] | ((s.cause[j - 1] == own_q) & (s.cause[j] == own_q))
-    j, cid, t = j[quiet], cid[quiet], t[quiet]
-    if not len(t):
-        return
-    # both sides of each crossing, strictly inside the chord and in order
-    room = np.minimum(t - s.t[j - 1], s.t[j] - t)
-    step = np.minimum(1e-7 * (s.t1 - s.t0)[cid], 0.5 * room)
-    ok = step > tol.BISECTION_RTOL * (s.t1 - s.t0)[cid]  # not on a sample already
-    j, cid, t, step = j[ok], cid[ok], t[ok], step[ok]
-    order = np.lexsort((t, j))
-    j, cid, t, step = j[order], cid[order], t[order], step[order]
-    tt = np.column_stack([t - step, t + step]).ravel()
-    cc = np.repeat(cid, 2)
-    xyz, uv, xy = s.evaluate(cc, tt, True)
-    merge(s, np.repeat(j - 1, 2), cc, tt, xyz, uv, xy)
 
 
 def _secant(fa: np.ndarray, fb: np.ndarray) -> np.ndarray:
@@ -429,30 +344,31 @@ def _guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings:
     row, t, w = net_guesses(s, vis, fl.f[whole], GUIDE_RTOL, meetings)
     if not len(row):
         return
-    i = whole[row]
-    c = np.tile(fl.cid[i], 2)
-    xyz, _, xy = s.evaluate(c, np.concatenate([t - w, t + w]), True)
-    h = vis.hidden(xyz, xy, np.tile(fl.owner[i], 2), np.tile(fl.kind[i], 2), view=s.view[c])
-    before, after = np.split(h, 2)
-    good = (before == fl.hlo[i]) & (after != fl.hlo[i])
-    fl.collapse(i[good], t[good])
+    fl.confirm(s, vis, whole[row], t, w)
 
 
 def _own_guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings: tuple) -> None:
     """Brackets of ``whole`` still a whole chord across which the curve passes
-    its own surface's contour close about the zero of ``N . ray`` there, where
-    ray tests beside it confirm the flip
-    (:func:`~lgraph.render.brackets.own_contour_flips`; at the wider widths
-    only in chords the net does not cross: ``meetings`` has none)."""
+    its own surface's contour (:func:`~lgraph.render.brackets.own_contour_flips`:
+    at the zero of ``N . ray``), or through another sheet of its own numeric
+    surface, the sheet in front at the hidden end
+    (:func:`~lgraph.render.sheets.through_sheets`: where that sheet's ray root
+    reaches the curve), collapse there when ray tests beside it confirm the
+    flip (:func:`~lgraph.render.brackets.confirmed`; at the wider widths only
+    in chords the net does not cross: ``meetings`` has none)."""
     alone = np.bincount(np.searchsorted(fl.f[whole], meetings[0]), minlength=len(whole)) == 0
-    still = fl.whole(s, whole)
-    whole, alone = whole[still], alone[still]
-    if not len(whole):
-        return
-    rows, t = own_contour_flips(
-        s, vis, *(x[whole] for x in (fl.cid, fl.owner, fl.kind, fl.lo, fl.hi, fl.hlo)), alone
-    )
-    fl.collapse(whole[rows], t)
+    for through in (False, True):
+        still = fl.whole(s, whole)
+        idx, lone = whole[still], alone[still]
+        if not len(idx):
+            return
+        x = [a[idx] for a in (fl.cid, fl.owner, fl.kind, fl.lo, fl.hi, fl.hlo)]
+        if through:
+            rows, t = through_sheets(s, vis, *x[:5], ~x[5])
+            rows, t = confirmed(s, vis, *x, lone, rows, t)
+        else:
+            rows, t = own_contour_flips(s, vis, *x, lone)
+        fl.collapse(idx[rows], t)
 
 
 def _k_section(s: Samples, fl: _Flips, vis: Occlusion) -> None:

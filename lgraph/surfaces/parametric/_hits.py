@@ -28,7 +28,7 @@ from ._facets import Ring, facet_test, fold_free
 if TYPE_CHECKING:
     from .._domain import Parametrized
 
-__all__ = ["hits"]
+__all__ = ["hits", "nearest_roots"]
 
 #: extra subdivision levels where Newton's method fails in a leaf
 HIT_MAX_DEPTH = 3
@@ -209,6 +209,34 @@ def hits(
     return out
 
 
+def nearest_roots(
+    surface: Parametrized,
+    origins: np.ndarray,
+    directions: np.ndarray,
+    smax: np.ndarray,
+    own: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The root of each ray ``origins + s * directions``, ``0 < s < smax``,
+    nearest to its origin (arguments as :func:`hits`; a ray's own root left
+    out): its parameters ``(n, 2)`` and ``s`` ``(n,)``, NaN where the ray
+    meets the patch nowhere."""
+    o = np.asarray(origins, dtype=float).reshape(-1, 3)
+    v = np.asarray(directions, dtype=float).reshape(-1, 3)
+    nray = len(o)
+    smax = np.broadcast_to(np.asarray(smax, dtype=float), (nray,)).copy()
+    own = np.zeros(nray, np.int8) if own is None else np.asarray(own).reshape(-1)
+    uv, s = np.full((nray, 2), np.nan), np.full(nray, np.nan)
+    if not nray:
+        return uv, s
+    H = _hierarchy(surface)
+    view = _common_view(H, o, v, smax)
+    free = None if view is None else fold_free(H.grid, *view)
+    for a in range(0, nray, HIT_CHUNK_RAYS):
+        b = slice(a, a + HIT_CHUNK_RAYS)
+        _hits_chunk(surface, H, o[b], v[b], smax[b], own[b], True, view, free, (uv[b], s[b]))
+    return uv, s
+
+
 def _common_view(H: _Hierarchy, o: np.ndarray, v: np.ndarray, smax: np.ndarray) -> Any:
     """``(eye, None)`` when all rays end at one eye (a central view), ``(None,
     direction)`` when all run one way to infinity (a parallel view), else None."""
@@ -233,9 +261,12 @@ def _hits_chunk(
     count: bool = False,
     view: Any = None,
     free: np.ndarray | None = None,
+    nearest: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Hits of one chunk of rays; with ``count``, every patch is searched
-    (not only until a ray's first root) and the distinct roots are counted.
+    (not only until a ray's first root) and the distinct roots are counted;
+    with ``nearest`` (and ``count``), the parameters and ``s`` of each ray's
+    root nearest to its origin are written into those arrays instead.
 
     Each (ray, leaf patch) pair the boxes let through is judged by its facets
     (:func:`~lgraph.surfaces.parametric._facets.facet_test`, no evaluation of
@@ -245,7 +276,7 @@ def _hits_chunk(
     ambiguous patch is searched by Newton's method from its centre."""
     nray = len(o)
     out = np.zeros(nray, bool)
-    roots_r, roots_s = [], []
+    roots_r, roots_s, roots_uv = [], [], []
     d = surface.domain
     size = H.size
     vnorm = np.linalg.norm(v, axis=1)
@@ -278,6 +309,7 @@ def _hits_chunk(
         if count:
             roots_r.append(rr[valid])
             roots_s.append(s[valid])
+            roots_uv.append(uv[valid])
         m = selfroot & (own[rr] == ON)
         own_uv[rr[m]] = uv[m]
         return ~valid & ~(conv & _in_cell(surface, uv, a, b, 1.5))
@@ -347,8 +379,18 @@ def _hits_chunk(
             if count:
                 roots_r.append(cand[ok])
                 roots_s.append(s[ok])
+                roots_uv.append(uv[ok])
     if not count:
         return out
+    if nearest is not None:  # the root nearest to each origin
+        if roots_r:
+            r, s, uv = (np.concatenate(x) for x in (roots_r, roots_s, roots_uv))
+            order = np.lexsort((s, r))
+            r, s, uv = r[order], s[order], uv[order]
+            first = np.ones(len(r), dtype=bool)
+            first[1:] = r[1:] != r[:-1]
+            nearest[0][r[first]], nearest[1][r[first]] = uv[first], s[first]
+        return np.zeros(nray, dtype=np.int64)
     if not roots_r:  # no ray met a patch box
         return np.zeros(nray, dtype=np.int64)
     return _distinct(np.concatenate(roots_r), np.concatenate(roots_s), 1e-7 * size / vnorm, nray)
