@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _tolerance as tol
-from .brackets import confirmed, net_guesses, sections, sub_points
+from .brackets import confirmed, net_guesses, own_contour_zeros, sections, sub_points
 from .crossings import net_crossings, net_meetings
 from .sampling import merge
 from .sheets import through_sheets
@@ -220,16 +220,21 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
     meetings = net_meetings(s, vis, a)
     guided, t_lo, t_hi = _guided(s, vis, a, dlo, dhi, meetings)
     lo[guided], hi[guided] = t_lo[guided], t_hi[guided]
-    # where the curve passes through another sheet of its own surface
-    one = np.flatnonzero(~guided & (np.abs(dhi - dlo) == 1))
-    rows, t = through_sheets(
-        s, vis, cid[one], owner[one], kind[one], lo[one], hi[one], (dhi > dlo)[one]
-    )
+    # where the curve passes through another sheet of its own surface, or
+    # its own contour (the count changes there, or, the ray test erring
+    # within 1e-5 of the scene of a fold, that close beside it)
     alone = np.bincount(np.searchsorted(a, meetings[0]), minlength=len(a)) == 0
-    x = [y[one] for y in (cid, owner, kind, lo, hi, dlo, alone)]
-    rows, t = confirmed(s, vis, *x, rows, t, dhi[one])
-    lo[one[rows]] = hi[one[rows]] = t
-    guided[one[rows]] = True
+    for through in (False, True):
+        rest = np.flatnonzero(~guided & ((np.abs(dhi - dlo) == 1) | ~through))
+        x = [y[rest] for y in (cid, owner, kind, lo, hi, dlo, alone)]
+        if through:
+            rows, t = through_sheets(s, vis, *x[:5], (dhi > dlo)[rest])
+        else:
+            t, ok = own_contour_zeros(s, vis, *x[:2], *x[3:5], tol.BISECTION_RTOL)
+            rows, t = np.flatnonzero(ok), t[ok]
+        rows, t = confirmed(s, vis, *x, rows, t, dhi[rest])
+        lo[rest[rows]] = hi[rest[rows]] = t
+        guided[rest[rows]] = True
     # K-section on the count for the rest, K chosen as for the flips
     K = sections(view, np.ones(len(a), dtype=bool), s.views.k, vis)
     for _ in range(tol.BISECTION_MAX_STEPS):
@@ -266,9 +271,9 @@ def _guided(
     (:func:`~lgraph.render.brackets.net_guesses`), is where its depth
     changes.  Counted ``GUIDE_RTOL`` of the span before and after it (two
     rays a bracket instead of a bisection's dozens); returns which brackets
-    agree and their new ends.  (Where a curve passes its own contour the
-    count changes beside, not at, the zero of ``N . ray``: tried on
-    Enneper's surface, none agreed; those stay with the bisection.)"""
+    agree and their new ends.  (Where a curve passes its own contour, or
+    through another sheet, :func:`_locate` goes on with the zero of ``N .
+    ray`` and the followed root, confirmed at wider widths.)"""
     m = len(a)
     ok, lo, hi = np.zeros(m, dtype=bool), np.full(m, np.nan), np.full(m, np.nan)
     row, t, w = net_guesses(s, vis, a, GUIDE_RTOL, meetings)

@@ -146,4 +146,7 @@ class _Follow:
         span = np.abs(self.s.t1[self.cid[ok]] - self.s.t0[self.cid[ok]])
         xtol = tol.BISECTION_RTOL * float(span.min())
         t = bracketed_roots(lambda x, sel: self.at(x, ok[sel]), a, b, fa, fb, xtol=xtol)
-        return ok, t
+        # a root on another sheet at the zero itself (beside a fold of the
+        # curve's own sheet the root comes onto it, its normal turning parallel)
+        real = np.isfinite(self.at(t, ok))
+        return ok[real], t[real]
