@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _tolerance as tol
+from .._own import ON
 from .._roots import bracketed_roots
 from .crossings import net_meetings
 from .sampling import Samples
@@ -188,6 +189,7 @@ def own_contour_zeros(
     lo: np.ndarray,
     hi: np.ndarray,
     rtol: float,
+    kind: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Where curves ``cid`` cross their own surfaces' contours between ``lo``
     and ``hi``: the zero of ``N . ray`` (:meth:`Occlusion.own_cosines`,
@@ -195,21 +197,26 @@ def own_contour_zeros(
     (:func:`~lgraph._roots.bracketed_roots`) to ``rtol`` of the shortest
     curve's span, with no ray test.  Returns the zeros
     and which brackets hold one (``N . ray`` known at both ends, of opposite
-    signs: a crossing, or an odd number of them).  ``lo <= hi``."""
+    signs: a crossing, or an odd number of them).  ``lo <= hi``.  With
+    ``kind``, only curves lying on their surfaces (``ON``): a contour's own
+    ``N . ray`` is zero all along it, its signs rounding."""
     m = len(cid)
     if not m:
         return np.zeros(0), np.zeros(0, dtype=bool)
     view = s.view[cid]
     lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
+    on = np.ones(m, dtype=bool) if kind is None else kind == ON
 
     def cosine(c: np.ndarray, t: np.ndarray, rows: np.ndarray) -> np.ndarray:
         xyz, uv, _ = s.evaluate(c, t, True)
         return vis.own_cosines(xyz, owner[rows], view[rows], uv)[:, 0]
 
     both = np.arange(m)
-    f = cosine(np.tile(cid, 2), np.concatenate([lo, hi]), np.tile(both, 2))
+    f = np.full(2 * m, np.nan)
+    i2 = np.tile(both, 2)[np.tile(on, 2)]
+    f[np.tile(on, 2)] = cosine(cid[i2], np.concatenate([lo, hi])[np.tile(on, 2)], i2)
     flo, fhi = f[:m], f[m:]
-    ok = np.isfinite(flo) & np.isfinite(fhi) & (flo * fhi < 0)
+    ok = on & np.isfinite(flo) & np.isfinite(fhi) & (flo * fhi < 0)
     t = 0.5 * (lo + hi)
     rows = np.flatnonzero(ok)
     if len(rows):
@@ -244,7 +251,7 @@ def own_contour_flips(
     does; the widths over ``ALONE_RTOL`` only where the bracket holds no other
     candidate (``alone``: a wide agreement elsewhere could straddle another
     flip).  Returns the brackets' rows and their flips."""
-    t, ok = own_contour_zeros(s, vis, cid, owner, lo, hi, tol.BISECTION_RTOL)
+    t, ok = own_contour_zeros(s, vis, cid, owner, lo, hi, tol.BISECTION_RTOL, kind)
     return confirmed(s, vis, cid, owner, kind, lo, hi, hlo, alone, np.flatnonzero(ok), t[ok])
 
 

@@ -230,7 +230,7 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
         if through:
             rows, t = through_sheets(s, vis, *x[:5], (dhi > dlo)[rest])
         else:
-            t, ok = own_contour_zeros(s, vis, *x[:2], *x[3:5], tol.BISECTION_RTOL)
+            t, ok = own_contour_zeros(s, vis, *x[:2], *x[3:5], tol.BISECTION_RTOL, x[2])
             rows, t = np.flatnonzero(ok), t[ok]
         rows, t = confirmed(s, vis, *x, rows, t, dhi[rest])
         lo[rest[rows]] = hi[rest[rows]] = t
