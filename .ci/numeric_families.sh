@@ -9,7 +9,8 @@ cd "$(dirname "$0")/.."
 # functions of the monkey saddle and the surfaces of revolution; and many views
 # rendered together, each as alone, issue 14; the contours and edges near the
 # singular lines of a parametrization, issue 25; the self-intersections of Boy's
-# surface and the Klein bottle, and the flips at a numeric surface's own contour)
+# surface and the Klein bottle, the flips at a numeric surface's own contour, and the
+# flips and depth changes located on the net, on another sheet, on the own contour)
 tests=(tests/test_field_lines.py tests/test_numeric_curvature.py tests/test_surface_curves.py
        tests/test_parametric.py lgraph/families lgraph/curvature.py
        tests/test_roots.py tests/test_ruled.py lgraph/_roots.py
@@ -18,7 +19,10 @@ tests=(tests/test_field_lines.py tests/test_numeric_curvature.py tests/test_surf
        tests/test_render_views.py tests/test_singular_edges.py
        "tests/test_onesided.py::test_boy_surface_self_intersection_is_three_equal_loops_through_the_triple_point"
        "tests/test_onesided.py::test_klein_bottle_self_intersection_is_one_closed_curve"
-       "tests/test_certain_hidden_numeric.py::test_flips_at_a_numeric_surfaces_own_contour_are_exact")
+       "tests/test_certain_hidden_numeric.py::test_flips_at_a_numeric_surfaces_own_contour_are_exact"
+       "tests/test_certain_hidden_numeric.py::test_flips_behind_a_numeric_contour_lie_on_it"
+       "tests/test_certain_hidden_numeric.py::test_changes_where_a_line_passes_through_another_sheet_are_exact"
+       "tests/test_certain_hidden_numeric.py::test_depth_changes_at_a_numeric_surfaces_own_contour")
 
 features="$(python .ci/npy_dispatch.py)"
 echo "ci: numeric families with NPY_DISABLE_CPU_FEATURES='$features'"
