@@ -407,10 +407,11 @@ def _torus_depth_errors(angles):
 def _no_guidance_for_depth(monkeypatch):
     from lgraph.render import depth
 
-    monkeypatch.setattr(depth, "through_sheets", lambda *args: (np.zeros(0, int), np.zeros(0)))
-    monkeypatch.setattr(
-        depth, "own_contour_zeros", lambda s, vis, cid, *rest: (np.zeros(len(cid)), cid < 0)
-    )
+    def none(*args):
+        return np.zeros(0, int), np.zeros(0)
+
+    monkeypatch.setattr(depth, "through_sheets", none)
+    monkeypatch.setattr(depth, "own_contour_zeros", none)
 
 
 @pytest.mark.parametrize("guided", [True, False], ids=["guided", "mutation"])

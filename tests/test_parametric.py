@@ -397,36 +397,49 @@ def test_numeric_hit_counts_match_the_torus_quartic(rays: str) -> None:
     assert np.array_equal(hid[stable], exact[stable] > 0)
 
 
-def test_numeric_hit_counts_beside_the_contour() -> None:
-    """Rays to the eye that pass the torus's contour at 1e-6 to 1e-2 of the
-    scene, on both sides (two roots more on one side, none on the other): the
-    leaves there fold, and only the fold rule (split, not a start) counts
-    them right.  Against the torus's quartic."""
+def _rays_past_the_torus_contour(per_piece: int, seed: int, keep: int | None = None):  # noqa: ANN202
+    """A torus, the same torus as a parametrization, the random generator,
+    ``rays(eps)`` and their number: the rays ``(o, v, smax)`` to the eye (9, -7, 6) from beyond
+    the torus that pass its contour (``per_piece`` points on every piece of it,
+    ``keep`` of them at random) at ``eps`` (of the distance) to one side."""
     T = lg.Torus(2, 0.7)
-    S = _torus_as_parametric(T)
     eye = np.array([9.0, -7.0, 6.0])
     view = lg.CentralProjector(eye=tuple(eye))
     c = np.concatenate(
         [
             b.evaluate(
-                np.repeat(np.arange(len(b)), 40),
-                np.concatenate([np.linspace(b.t0[k], b.t1[k], 40) for k in range(len(b))]),
+                np.repeat(np.arange(len(b)), per_piece),
+                np.concatenate([np.linspace(b.t0[k], b.t1[k], per_piece) for k in range(len(b))]),
             )[0]
             for b in T.contour(view)
         ]
     )
     lo, hi = T.bounds()
     size = float(np.linalg.norm(hi - lo))
-    rng = np.random.default_rng(8)
-    c = c[rng.permutation(len(c))[:400]]
+    rng = np.random.default_rng(seed)
+    if keep is not None:
+        c = c[rng.permutation(len(c))[:keep]]
     d = c - eye
     dist = np.linalg.norm(d, axis=1)
     d /= dist[:, None]
     side = np.cross(d, rng.normal(size=(len(c), 3)))
     side /= np.linalg.norm(side, axis=1)[:, None]
-    eps = np.repeat(10.0 ** rng.uniform(-6, -2, len(c) // 2), 2) * np.tile([1.0, -1.0], len(c) // 2)
-    o = eye + (dist + size)[:, None] * (d + eps[:, None] * side)  # beyond the torus
-    v, smax = view.rays(o)
+
+    def rays(eps: np.ndarray) -> tuple[np.ndarray, ...]:
+        o = eye + (dist + size)[:, None] * (d + eps[:, None] * side)  # beyond the torus
+        return (o, *view.rays(o))
+
+    return T, _torus_as_parametric(T), rng, rays, len(c)
+
+
+def test_numeric_hit_counts_beside_the_contour() -> None:
+    """Rays to the eye that pass the torus's contour at 1e-6 to 1e-2 of the
+    scene, on both sides (two roots more on one side, none on the other): the
+    leaves there fold, and only the fold rule (split, not a start) counts
+    them right.  Against the torus's quartic."""
+    T, S, rng, rays, n = _rays_past_the_torus_contour(40, 8, keep=400)
+    eps = np.repeat(10.0 ** rng.uniform(-6, -2, n // 2), 2) * np.tile([1.0, -1.0], n // 2)
+    o, v, smax = rays(eps)
     exact = T.hit_count(o, v, smax)
     got = S.hit_count(o, v, smax)
     assert len(np.unique(exact)) >= 2
@@ -443,33 +456,8 @@ def test_numeric_hit_counts_of_grazing_rays_count_a_double_root_once() -> None:
     on a torus.  No count exceeds the largest exact count (the torus's
     quartic) of the same ray and of that ray moved 1e-6 of the scene to
     either side."""
-    T = lg.Torus(2, 0.7)
-    S = _torus_as_parametric(T)
-    eye = np.array([9.0, -7.0, 6.0])
-    view = lg.CentralProjector(eye=tuple(eye))
-    c = np.concatenate(
-        [
-            b.evaluate(
-                np.repeat(np.arange(len(b)), 60),
-                np.concatenate([np.linspace(b.t0[k], b.t1[k], 60) for k in range(len(b))]),
-            )[0]
-            for b in T.contour(view)
-        ]
-    )
-    lo, hi = T.bounds()
-    size = float(np.linalg.norm(hi - lo))
-    rng = np.random.default_rng(11)
-    d = c - eye
-    dist = np.linalg.norm(d, axis=1)
-    d /= dist[:, None]
-    side = np.cross(d, rng.normal(size=(len(c), 3)))
-    side /= np.linalg.norm(side, axis=1)[:, None]
-
-    def rays(eps):
-        o = eye + (dist + size)[:, None] * (d + eps[:, None] * side)
-        return (o, *view.rays(o))
-
-    eps = 10.0 ** rng.uniform(-10, -6, len(c)) * rng.choice([-1.0, 1.0], len(c))
+    T, S, rng, rays, n = _rays_past_the_torus_contour(60, 11)
+    eps = 10.0 ** rng.uniform(-10, -6, n) * rng.choice([-1.0, 1.0], n)
     got = S.hit_count(*rays(eps))
     # the exact count of the same ray and of the rays 1e-6 of the scene to either side
     bound = np.max([T.hit_count(*rays(eps + e)) for e in (0.0, 1e-6, -1e-6)], axis=0)

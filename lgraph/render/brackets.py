@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import attrs
 import numpy as np
 
 from .. import _tolerance as tol
@@ -30,11 +31,10 @@ OWN_GUIDE_RTOLS = (1e-7, 1e-5, 1e-4, 1e-3)
 ALONE_RTOL = 1e-4
 
 __all__ = [
-    "beside",
+    "Brackets",
     "confirmed",
     "exact_crossings",
     "net_guesses",
-    "own_contour_flips",
     "own_contour_zeros",
     "sections",
     "sub_points",
@@ -123,30 +123,6 @@ def net_guesses(
     return row[met], t[met], w[met]
 
 
-def beside(
-    s: Samples,
-    vis: Occlusion,
-    cid: np.ndarray,
-    owner: np.ndarray,
-    kind: np.ndarray,
-    t: np.ndarray,
-    w: np.ndarray,
-    count: bool = False,
-) -> tuple[np.ndarray, np.ndarray]:
-    """The hidden flags (``count``: the sheets in front, at least 1) of
-    curves ``cid`` (owners ``owner``, ownership codes ``kind``) at ``t - w``
-    and ``t + w``: the two ray tests that confirm a change located at ``t``."""
-    c = np.tile(cid, 2)
-    xyz, _, xy = s.evaluate(c, np.concatenate([t - w, t + w]), True)
-    owner, kind = np.tile(owner, 2), np.tile(kind, 2)
-    if count:
-        h = np.maximum(vis.sheets(xyz, xy, owner, kind, view=s.view[c]), 1)
-    else:
-        h = vis.hidden(xyz, xy, owner, kind, view=s.view[c])
-    before, after = np.split(h, 2)
-    return before, after
-
-
 def sections(view: np.ndarray, open_: np.ndarray, k_views: int, vis: Occlusion) -> np.ndarray:
     """``K`` for K-section, per bracket (brackets in views ``view``; those
     ``open_`` counted): the fixed cost of a step against its sub-points'
@@ -181,113 +157,107 @@ def sub_points(lo: np.ndarray, hi: np.ndarray, idx: np.ndarray, k: np.ndarray) -
     return rep, t, first_differing
 
 
-def own_contour_zeros(
-    s: Samples,
-    vis: Occlusion,
-    cid: np.ndarray,
-    owner: np.ndarray,
-    lo: np.ndarray,
-    hi: np.ndarray,
-    rtol: float,
-    kind: np.ndarray | None = None,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Where curves ``cid`` cross their own surfaces' contours between ``lo``
-    and ``hi``: the zero of ``N . ray`` (:meth:`Occlusion.own_cosines`,
-    continuous along a curve on its own surface), refined on that function
-    (:func:`~lgraph._roots.bracketed_roots`) to ``rtol`` of the shortest
-    curve's span, with no ray test.  Returns the zeros
-    and which brackets hold one (``N . ray`` known at both ends, of opposite
-    signs: a crossing, or an odd number of them).  ``lo <= hi``.  With
-    ``kind``, only curves lying on their surfaces (``ON``): a contour's own
-    ``N . ray`` is zero all along it, its signs rounding."""
-    m = len(cid)
-    if not m:
-        return np.zeros(0), np.zeros(0, dtype=bool)
-    view = s.view[cid]
-    lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
-    on = np.ones(m, dtype=bool) if kind is None else kind == ON
+@attrs.frozen
+class Brackets:
+    """Brackets ``lo < hi`` of a change on curves ``cid`` (owners
+    ``owner``, ownership codes ``kind``): ``before`` the state at ``lo``
+    (the hidden flag, or the depth), ``after`` the depth at ``hi`` (None: a
+    flip of visibility, the other state), ``alone`` which brackets hold no
+    other candidate (None: none is alone)."""
 
-    def cosine(c: np.ndarray, t: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        xyz, uv, _ = s.evaluate(c, t, True)
-        return vis.own_cosines(xyz, owner[rows], view[rows], uv)[:, 0]
+    cid: np.ndarray
+    owner: np.ndarray
+    kind: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    before: np.ndarray
+    after: np.ndarray | None = None
+    alone: np.ndarray | None = None
 
-    both = np.arange(m)
-    f = np.full(2 * m, np.nan)
-    i2 = np.tile(both, 2)[np.tile(on, 2)]
-    f[np.tile(on, 2)] = cosine(cid[i2], np.concatenate([lo, hi])[np.tile(on, 2)], i2)
-    flo, fhi = f[:m], f[m:]
-    ok = on & np.isfinite(flo) & np.isfinite(fhi) & (flo * fhi < 0)
-    t = 0.5 * (lo + hi)
-    rows = np.flatnonzero(ok)
-    if len(rows):
-        span = np.abs(s.t1[cid[rows]] - s.t0[cid[rows]])
-        t[rows] = bracketed_roots(
-            lambda x, sel: cosine(cid[rows[sel]], x, rows[sel]),
-            lo[rows],
-            hi[rows],
-            flo[rows],
-            fhi[rows],
-            xtol=rtol * float(span.min()),
-        )
-    return t, ok
+    def take(self, i: np.ndarray) -> Brackets:
+        """Brackets ``i`` of these."""
+        return Brackets(*(None if x is None else x[i] for x in attrs.astuple(self, recurse=False)))
+
+    @property
+    def front_hi(self) -> np.ndarray:
+        """Whether the end with more in front (the hidden end, or the
+        deeper one) is ``hi``."""
+        return ~self.before if self.after is None else self.after > self.before
 
 
-def own_contour_flips(
-    s: Samples,
-    vis: Occlusion,
-    cid: np.ndarray,
-    owner: np.ndarray,
-    kind: np.ndarray,
-    lo: np.ndarray,
-    hi: np.ndarray,
-    hlo: np.ndarray,
-    alone: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Flips of visibility at a curve's own contour: in brackets ``lo < hi``
-    (hidden state ``hlo`` at ``lo``) across which ``N . ray`` changes sign,
-    the flip lies at its zero (where the fold of the curve's own surface
-    comes in front; :func:`own_contour_zeros`, no ray test) when ray tests
-    ``OWN_GUIDE_RTOLS`` of the span either side agree, the first width that
-    does; the widths over ``ALONE_RTOL`` only where the bracket holds no other
-    candidate (``alone``: a wide agreement elsewhere could straddle another
-    flip).  Returns the brackets' rows and their flips."""
-    t, ok = own_contour_zeros(s, vis, cid, owner, lo, hi, tol.BISECTION_RTOL, kind)
-    return confirmed(s, vis, cid, owner, kind, lo, hi, hlo, alone, np.flatnonzero(ok), t[ok])
+def own_contour_zeros(s: Samples, vis: Occlusion, b: Brackets) -> tuple[np.ndarray, np.ndarray]:
+    """Where curves lying on their surfaces (``ON``; a contour's own ``N .
+    ray`` is zero all along it, its signs rounding) cross their own
+    surfaces' contours in brackets ``b``: the zero of ``N . ray``
+    (:meth:`Occlusion.own_cosines`, continuous along a curve on its own
+    surface; known at both ends, of opposite signs: a crossing, or an odd
+    number of them), refined on that function
+    (:func:`~lgraph._roots.bracketed_roots`) to ``BISECTION_RTOL`` of the
+    shortest curve's span, with no ray test.  Returns the brackets' rows and
+    their zeros."""
+    rows = np.flatnonzero(b.kind == ON)
+    view = s.view[b.cid]
+
+    def cosine(t: np.ndarray, sel: np.ndarray) -> np.ndarray:
+        xyz, uv, _ = s.evaluate(b.cid[sel], t, True)
+        return vis.own_cosines(xyz, b.owner[sel], view[sel], uv)[:, 0]
+
+    flo, fhi = np.split(cosine(np.concatenate([b.lo[rows], b.hi[rows]]), np.tile(rows, 2)), 2)
+    ok = np.isfinite(flo) & np.isfinite(fhi) & (flo * fhi < 0)
+    rows, flo, fhi = rows[ok], flo[ok], fhi[ok]
+    if not len(rows):
+        return rows, np.zeros(0)
+    span = np.abs(s.t1[b.cid[rows]] - s.t0[b.cid[rows]])
+    t = bracketed_roots(
+        lambda x, sel: cosine(x, rows[sel]),
+        b.lo[rows],
+        b.hi[rows],
+        flo,
+        fhi,
+        xtol=tol.BISECTION_RTOL * float(span.min()),
+    )
+    return rows, t
 
 
 def confirmed(
     s: Samples,
     vis: Occlusion,
-    cid: np.ndarray,
-    owner: np.ndarray,
-    kind: np.ndarray,
-    lo: np.ndarray,
-    hi: np.ndarray,
-    hlo: np.ndarray,
-    alone: np.ndarray,
+    b: Brackets,
     todo: np.ndarray,
     t: np.ndarray,
-    dhi: np.ndarray | None = None,
+    rtols: tuple[float, ...] = OWN_GUIDE_RTOLS,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Flips ``t`` proposed in brackets ``todo`` (of ``lo < hi``, hidden
-    state ``hlo`` at ``lo``) that ray tests ``OWN_GUIDE_RTOLS`` of the span
-    either side confirm, the first width that does; the widths over
-    ``ALONE_RTOL`` only where the bracket holds no other candidate
-    (``alone``).  The numeric ray test takes a root closer than about 1e-5
-    of the scene to the ray's origin for the origin's own, so beside the
-    own contour or another sheet through the curve it errs.  With ``dhi``,
-    changes of depth from ``hlo`` to ``dhi`` instead (sheets counted).
-    Returns the confirmed brackets' rows and their flips or changes."""
-    span = np.abs(s.t1[cid] - s.t0[cid])
+    """Changes ``t`` proposed in brackets ``todo`` of ``b`` that ray tests
+    ``rtols`` of the span either side confirm (the state ``b.before``
+    before, the other state or the depth ``b.after`` after), the first
+    width that does; the widths over ``ALONE_RTOL`` only where the bracket
+    holds no other candidate (``b.alone``: a wide agreement elsewhere could
+    straddle another change).  The numeric ray test takes a root closer than
+    about 1e-5 of the scene to the ray's origin for the origin's own, so
+    beside its own contour or another sheet through the curve it errs: hence
+    the widths.  Returns the confirmed brackets' rows and their changes."""
+    count = b.after is not None
+    span = np.abs(s.t1[b.cid] - s.t0[b.cid])
+    alone = np.zeros(len(span), dtype=bool) if b.alone is None else b.alone
     rows, out = [], []
-    for rtol in OWN_GUIDE_RTOLS:
+    for rtol in rtols:
         w = rtol * span[todo]
-        inside = (t - w > lo[todo]) & (t + w < hi[todo]) & (alone[todo] | (rtol <= ALONE_RTOL))
+        inside = (t - w > b.lo[todo]) & (t + w < b.hi[todo])
+        inside &= alone[todo] | (rtol <= ALONE_RTOL)
         i, ti, w = todo[inside], t[inside], w[inside]
         if not len(i):
             break
-        before, after = beside(s, vis, cid[i], owner[i], kind[i], ti, w, dhi is not None)
-        good = (before == hlo[i]) & ((after != hlo[i]) if dhi is None else (after == dhi[i]))
+        # the state at ti - w and at ti + w
+        c = np.tile(b.cid[i], 2)
+        xyz, _, xy = s.evaluate(c, np.concatenate([ti - w, ti + w]), True)
+        owner, kind, view = np.tile(b.owner[i], 2), np.tile(b.kind[i], 2), s.view[c]
+        if count:
+            h = np.maximum(vis.sheets(xyz, xy, owner, kind, view=view), 1)
+        else:
+            h = vis.hidden(xyz, xy, owner, kind, view=view)
+        before, after = np.split(h, 2)
+        good = before == b.before[i]
+        good &= (after == b.after[i]) if count else (after != b.before[i])
         rows.append(i[good])
         out.append(ti[good])
         keep = ~np.isin(todo, i[good])

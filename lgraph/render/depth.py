@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _tolerance as tol
-from .brackets import confirmed, net_guesses, own_contour_zeros, sections, sub_points
+from .brackets import Brackets, confirmed, net_guesses, own_contour_zeros, sections, sub_points
 from .crossings import net_crossings, net_meetings
 from .sampling import merge
 from .sheets import through_sheets
@@ -216,25 +216,23 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
     span = np.abs(s.t1[cid] - s.t0[cid])
     owner, kind = s.owners(a)
     view = s.view[cid]
-    # on the net's crossing where it is one and the counts beside it agree
+    # on the net's crossing where it is one, where the curve passes its own
+    # contour (the count changes there, or, the ray test erring within 1e-5
+    # of the scene of a fold, that close beside it) or through another sheet
+    # of its own surface: where counts beside it agree
     meetings = net_meetings(s, vis, a)
-    guided, t_lo, t_hi = _guided(s, vis, a, dlo, dhi, meetings)
-    lo[guided], hi[guided] = t_lo[guided], t_hi[guided]
-    # where the curve passes through another sheet of its own surface, or
-    # its own contour (the count changes there, or, the ray test erring
-    # within 1e-5 of the scene of a fold, that close beside it)
     alone = np.bincount(np.searchsorted(a, meetings[0]), minlength=len(a)) == 0
-    for through in (False, True):
-        rest = np.flatnonzero(~guided & ((np.abs(dhi - dlo) == 1) | ~through))
-        x = [y[rest] for y in (cid, owner, kind, lo, hi, dlo, alone)]
-        if through:
-            rows, t = through_sheets(s, vis, *x[:5], (dhi > dlo)[rest])
-        else:
-            t, ok = own_contour_zeros(s, vis, *x[:2], *x[3:5], tol.BISECTION_RTOL, x[2])
-            rows, t = np.flatnonzero(ok), t[ok]
-        rows, t = confirmed(s, vis, *x, rows, t, dhi[rest])
-        lo[rest[rows]] = hi[rest[rows]] = t
-        guided[rest[rows]] = True
+    b = Brackets(cid, owner, kind, lo.copy(), hi.copy(), dlo, dhi.copy(), alone)
+    row, t, _ = net_guesses(s, vis, a, GUIDE_RTOL, meetings)
+    rows, t = confirmed(s, vis, b, row, t, (GUIDE_RTOL,))
+    guided = np.zeros(len(a), dtype=bool)
+    guided[rows], lo[rows], hi[rows] = True, t, t
+    for find in (own_contour_zeros, through_sheets):
+        rest = np.flatnonzero(~guided)
+        r = b.take(rest)
+        rows, t = confirmed(s, vis, r, *find(s, vis, r))
+        rows = rest[rows]
+        guided[rows], lo[rows], hi[rows] = True, t, t
     # K-section on the count for the rest, K chosen as for the flips
     K = sections(view, np.ones(len(a), dtype=bool), s.views.k, vis)
     for _ in range(tol.BISECTION_MAX_STEPS):
@@ -260,31 +258,3 @@ def _locate(s: Samples, vis: Occlusion, a: np.ndarray, depth: np.ndarray) -> np.
     out[~new] = depth
     out[new] = ends
     return out
-
-
-def _guided(
-    s: Samples, vis: Occlusion, a: np.ndarray, dlo: np.ndarray, dhi: np.ndarray, meetings: tuple
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Brackets ``a, a + 1`` (depths ``dlo``, ``dhi``) whose chord crosses
-    the sampled net once: where the curve passes behind that net curve, the
-    crossing refined on both exact curves
-    (:func:`~lgraph.render.brackets.net_guesses`), is where its depth
-    changes.  Counted ``GUIDE_RTOL`` of the span before and after it (two
-    rays a bracket instead of a bisection's dozens); returns which brackets
-    agree and their new ends.  (Where a curve passes its own contour, or
-    through another sheet, :func:`_locate` goes on with the zero of ``N .
-    ray`` and the followed root, confirmed at wider widths.)"""
-    m = len(a)
-    ok, lo, hi = np.zeros(m, dtype=bool), np.full(m, np.nan), np.full(m, np.nan)
-    row, t, w = net_guesses(s, vis, a, GUIDE_RTOL, meetings)
-    if not len(row):
-        return ok, lo, hi
-    q = a[row]
-    cc, first = np.tile(s.cid[q], 2), np.tile(q, 2)
-    xyz, _, xy = s.evaluate(cc, np.concatenate([t - w, t + w]), True)
-    owner, kind = s.owners(first)
-    before, after = np.split(np.maximum(vis.sheets(xyz, xy, owner, kind, view=s.view[cc]), 1), 2)
-    good = (before == dlo[row]) & (after == dhi[row])
-    ok[row[good]] = True
-    lo[row[good]], hi[row[good]] = t[good] - w[good], t[good] + w[good]
-    return ok, lo, hi

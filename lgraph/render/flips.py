@@ -25,10 +25,10 @@ import numpy as np
 from .. import _tolerance as tol
 from ..surfaces._base import ON
 from .brackets import (
-    beside,
+    Brackets,
     confirmed,
     net_guesses,
-    own_contour_flips,
+    own_contour_zeros,
     sections,
     sub_points,
 )
@@ -84,14 +84,11 @@ class _Flips:
         step = 0.25 * tol.BISECTION_RTOL * np.maximum(self.span[i], np.abs(t))
         self.lo[i], self.hi[i] = t - step, t + step
 
-    def confirm(
-        self, s: Samples, vis: Occlusion, i: np.ndarray, t: np.ndarray, w: np.ndarray
-    ) -> None:
-        """Brackets ``i`` collapse onto ``t`` where ray tests ``w`` before and
-        after it see the flip (:func:`~lgraph.render.brackets.beside`)."""
-        before, after = beside(s, vis, self.cid[i], self.owner[i], self.kind[i], t, w)
-        good = (before == self.hlo[i]) & (after != self.hlo[i])
-        self.collapse(i[good], t[good])
+    def brackets(self, i: np.ndarray, alone: np.ndarray | None = None) -> Brackets:
+        """Brackets ``i`` for :mod:`lgraph.render.brackets` (``alone``: those
+        that hold no other candidate)."""
+        x = (self.cid, self.owner, self.kind, self.lo, self.hi, self.hlo)
+        return Brackets(*(y[i] for y in x), alone=alone)
 
     def open(
         self,
@@ -341,15 +338,14 @@ def _guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings:
     (:func:`~lgraph.render.brackets.net_guesses`: where the curve passes
     behind that net curve) when ray tests ``GUIDE_RTOL`` of the span either
     side of it agree: two ray tests instead of a K-section's dozens."""
-    row, t, w = net_guesses(s, vis, fl.f[whole], GUIDE_RTOL, meetings)
-    if not len(row):
-        return
-    fl.confirm(s, vis, whole[row], t, w)
+    row, t, _ = net_guesses(s, vis, fl.f[whole], GUIDE_RTOL, meetings)
+    rows, t = confirmed(s, vis, fl.brackets(whole[row]), np.arange(len(row)), t, (GUIDE_RTOL,))
+    fl.collapse(whole[row[rows]], t)
 
 
 def _own_guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meetings: tuple) -> None:
     """Brackets of ``whole`` still a whole chord across which the curve passes
-    its own surface's contour (:func:`~lgraph.render.brackets.own_contour_flips`:
+    its own surface's contour (:func:`~lgraph.render.brackets.own_contour_zeros`:
     at the zero of ``N . ray``), or through another sheet of its own numeric
     surface, the sheet in front at the hidden end
     (:func:`~lgraph.render.sheets.through_sheets`: where that sheet's ray root
@@ -357,17 +353,13 @@ def _own_guided(s: Samples, fl: _Flips, vis: Occlusion, whole: np.ndarray, meeti
     flip (:func:`~lgraph.render.brackets.confirmed`; at the wider widths only
     in chords the net does not cross: ``meetings`` has none)."""
     alone = np.bincount(np.searchsorted(fl.f[whole], meetings[0]), minlength=len(whole)) == 0
-    for through in (False, True):
+    for find in (own_contour_zeros, through_sheets):
         still = fl.whole(s, whole)
-        idx, lone = whole[still], alone[still]
+        idx = whole[still]
         if not len(idx):
             return
-        x = [a[idx] for a in (fl.cid, fl.owner, fl.kind, fl.lo, fl.hi, fl.hlo)]
-        if through:
-            rows, t = through_sheets(s, vis, *x[:5], ~x[5])
-            rows, t = confirmed(s, vis, *x, lone, rows, t)
-        else:
-            rows, t = own_contour_flips(s, vis, *x, lone)
+        b = fl.brackets(idx, alone[still])
+        rows, t = confirmed(s, vis, b, *find(s, vis, b))
         fl.collapse(idx[rows], t)
 
 

@@ -26,7 +26,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .. import _tolerance as tol
-from ..surfaces._base import Surface
+from ..surfaces._base import numeric_ray_test
 from ..surfaces.parametric._boxes import set_meter
 from .brackets import sections
 from .sampling import Samples, _at, _culprit, _predicted_deviation, check_points
@@ -224,7 +224,7 @@ def probe_ray_tests(
     samples when ``counting``: every hidden sample's sheets are counted
     too)."""
     fresh = np.flatnonzero(s.fresh)
-    numeric = sum(1 for n in meter.nodes if n.hides and _numeric(n.surface))
+    numeric = sum(1 for n in meter.nodes if n.hides and numeric_ray_test(n.surface))
     most = tol.HIT_MAX_CANDIDATES / tol.HIT_CHUNK_RAYS * (2 if counting else 1)
     if len(fresh) <= tol.RAY_PROBE or predicted * most * numeric <= tol.MAX_RAY_BOXES:
         return
@@ -445,11 +445,6 @@ def _probe_curves(fam: np.ndarray, cand: np.ndarray) -> np.ndarray:
     p = tol.ALIAS_PROBE_CURVES
     pos = start[:, None] + ((np.arange(p) + 0.5) * count[:, None] / p).astype(np.int64)
     return np.unique(c[pos])
-
-
-def _numeric(surface: Any) -> bool:
-    """Whether ``surface`` is tested by the numeric ray test (the default)."""
-    return surface is not None and type(surface).hits is Surface.hits
 
 
 def _short(item: Any) -> str:

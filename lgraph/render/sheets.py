@@ -25,9 +25,10 @@ import numpy as np
 from .. import _tolerance as tol
 from .._own import OFF
 from .._roots import bracketed_roots
-from ..surfaces._base import Surface
+from ..surfaces._base import Surface, numeric_ray_test
 from ..surfaces.parametric._boxes import _hierarchy
 from ..surfaces.parametric._hits import _newton, nearest_roots
+from .brackets import Brackets
 from .sampling import Samples
 
 if TYPE_CHECKING:
@@ -47,36 +48,23 @@ OTHER_SHEET_SINE = 1e-3
 SUB_POINTS = 8
 
 
-def _numeric(surf: Surface) -> bool:
-    """Whether ``surf`` is asked by the numeric ray test (a patch with a domain)."""
-    return type(surf).hits is Surface.hits and hasattr(surf, "domain")
-
-
-def through_sheets(
-    s: Samples,
-    vis: Occlusion,
-    cid: np.ndarray,
-    owner: np.ndarray,
-    kind: np.ndarray,
-    lo: np.ndarray,
-    hi: np.ndarray,
-    front_hi: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Brackets ``lo < hi`` of curves ``cid`` (owners ``owner``, ownership
-    codes ``kind``) across which the curve passes through a sheet of its own
-    numeric surface, that sheet in front of the curve at ``hi`` where
-    ``front_hi`` (else at ``lo``): the rows of the brackets where the ray's
+def through_sheets(s: Samples, vis: Occlusion, b: Brackets) -> tuple[np.ndarray, np.ndarray]:
+    """Brackets ``b`` across which the curve may pass through a sheet of its
+    own numeric surface, that sheet in front at the bracket's hidden (or
+    deeper, by one sheet) end: the rows of the brackets where the ray's
     nearest root on the sheet, followed from that end, reaches the ray's
     origin, and the parameters where it does (to ``BISECTION_RTOL`` of the
     shortest span).  No ray test confirms them."""
     rows_out, t_out = [], []
-    first = vis._on_first[owner + 1]
+    first = vis._on_first[b.owner + 1]
+    one = np.ones(len(b.cid), dtype=bool) if b.after is None else np.abs(b.after - b.before) == 1
+    front_hi = b.front_hi
     for j, surf, inv, _ in vis.items:
-        rows = np.flatnonzero((first == j) & (kind != OFF))
-        if len(rows) and _numeric(surf):
-            front = np.where(front_hi[rows], hi[rows], lo[rows])
-            back = np.where(front_hi[rows], lo[rows], hi[rows])
-            ok, t = _Follow(s, vis, surf, inv, cid[rows], kind[rows], front).zeros(back)
+        rows = np.flatnonzero((first == j) & (b.kind != OFF) & one)
+        if len(rows) and numeric_ray_test(surf):
+            front = np.where(front_hi[rows], b.hi[rows], b.lo[rows])
+            back = np.where(front_hi[rows], b.lo[rows], b.hi[rows])
+            ok, t = _Follow(s, vis, surf, inv, b.cid[rows], b.kind[rows], front).zeros(back)
             rows_out.append(rows[ok])
             t_out.append(t)
     if not rows_out:

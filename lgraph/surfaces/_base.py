@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from ..curves import CurveBatch
     from ..scene.projectors import Projector
 
-__all__ = ["Domain", "Surface", "OFF", "ON", "CONTOUR"]
+__all__ = ["Domain", "Surface", "OFF", "ON", "CONTOUR", "numeric_ray_test"]
 
 
 # fourth-order central stencils at offsets -2, -1, 1, 2 (first and second derivative;
@@ -430,3 +430,9 @@ class Surface:
 
     def describe(self) -> str:
         return repr(self)
+
+
+def numeric_ray_test(surface: Any) -> bool:
+    """Whether ``surface`` is tested by the numeric ray test (the default
+    :meth:`Surface.hits`, :mod:`!lgraph.surfaces.parametric._hits`)."""
+    return surface is not None and type(surface).hits is Surface.hits

@@ -189,9 +189,13 @@ def hits(
     smax: np.ndarray,
     own: np.ndarray | None = None,
     count: bool = False,
+    nearest: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Numeric :meth:`Surface.hits` (see there); with ``count``, the number
-    of distinct roots of each ray instead (:meth:`Surface.hit_count`).
+    of distinct roots of each ray instead (:meth:`Surface.hit_count`); with
+    ``nearest`` (and ``count``), the parameters and ``s`` of each ray's root
+    nearest to its origin are written into those arrays
+    (:func:`nearest_roots`).
 
     Rays are tested in chunks of ``HIT_CHUNK_RAYS`` so that memory stays
     bounded; a chunk whose rays meet more than ``HIT_MAX_CANDIDATES`` patch
@@ -211,7 +215,8 @@ def hits(
     free = None if view is None else fold_free(H.grid, *view)  # (n, n) leaves
     for a in range(0, nray, HIT_CHUNK_RAYS):
         b = slice(a, a + HIT_CHUNK_RAYS)
-        out[b] = _hits_chunk(surface, H, o[b], v[b], smax[b], own[b], count, view, free)
+        near = None if nearest is None else (nearest[0][b], nearest[1][b])
+        out[b] = _hits_chunk(surface, H, o[b], v[b], smax[b], own[b], count, view, free, near)
     return out
 
 
@@ -226,20 +231,9 @@ def nearest_roots(
     nearest to its origin (arguments as :func:`hits`; a ray's own root left
     out): its parameters ``(n, 2)`` and ``s`` ``(n,)``, NaN where the ray
     meets the patch nowhere."""
-    o = np.asarray(origins, dtype=float).reshape(-1, 3)
-    v = np.asarray(directions, dtype=float).reshape(-1, 3)
-    nray = len(o)
-    smax = np.broadcast_to(np.asarray(smax, dtype=float), (nray,)).copy()
-    own = np.zeros(nray, np.int8) if own is None else np.asarray(own).reshape(-1)
-    uv, s = np.full((nray, 2), np.nan), np.full(nray, np.nan)
-    if not nray:
-        return uv, s
-    H = _hierarchy(surface)
-    view = _common_view(H, o, v, smax)
-    free = None if view is None else fold_free(H.grid, *view)
-    for a in range(0, nray, HIT_CHUNK_RAYS):
-        b = slice(a, a + HIT_CHUNK_RAYS)
-        _hits_chunk(surface, H, o[b], v[b], smax[b], own[b], True, view, free, (uv[b], s[b]))
+    n = len(np.asarray(origins).reshape(-1, 3))
+    uv, s = np.full((n, 2), np.nan), np.full(n, np.nan)
+    hits(surface, origins, directions, smax, own, True, (uv, s))
     return uv, s
 
 
